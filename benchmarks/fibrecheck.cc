@@ -1,0 +1,32 @@
+// fibrecheck: cross-checks the iterative fibre-contact method for tow compaction.
+//
+// Sample runs:
+//   fibrecheck solve scenes/two_fibres_crossing.json --out crossing.result.json --vtk crossing.vtp
+//   fibrecheck solve scenes/small_tow_19.json --rule accelerated --out tow.result.json
+//   fibrecheck solve --help-scene
+//   fibrecheck generate tow --fibres 1000 --slices 100 --seed 7 --out tow1000.json
+#include <CLI/CLI.hpp>
+#include <iostream>
+
+#include "exit_codes.h"
+#include "generate_command.h"
+#include "solve_command.h"
+
+int main(int argc, char** argv) {
+  CLI::App app{"fibrecheck: the iterative fibre-contact method of tow compaction, checked"};
+  app.require_subcommand(1);
+  int exit_code = fibrecheck::kExitConverged;
+  fibrecheck::add_solve_command(app, exit_code);
+  fibrecheck::add_generate_command(app, exit_code);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    app.exit(e);
+    return fibrecheck::kExitBadInput;
+  }
+  return exit_code;
+}

@@ -1,0 +1,172 @@
+#include "solve_command.h"
+
+#include <unistd.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <iomanip>
+#include <iostream>
+#include <sstream>
+
+#include "exit_codes.h"
+#include "input_error.h"
+#include "iterative_solver.h"
+#include "result.h"
+#include "scene.h"
+#include "vtk_writer.h"
+
+namespace fibrecheck {
+
+namespace {
+
+struct SolveArguments {
+  std::vector<std::string> scenes;
+  std::string out, out_dir, vtk, rule;
+  int slices = 0;
+  double c = 0.0;
+  bool quiet = false;
+  bool help_scene = false;
+};
+
+/// Progress on long runs: a line every few seconds (overwritten in place on a terminal).
+std::function<void(const IterationProgress&)> progress_printer(bool terminal) {
+  return [terminal](const IterationProgress& p) {
+    std::ostringstream line;
+    line.precision(3);
+    line << "  iteration " << p.iteration << "/" << p.max_iterations << ", " << p.contacts
+         << " candidate contacts, overlap " << p.overlap_residual << " mm, gap-force "
+         << p.gap_force_residual << " mm (tolerance " << p.tolerance << "), " << std::fixed
+         << std::setprecision(1) << p.elapsed_s << " s";
+    if (terminal)
+      std::cerr << "\r" << line.str() << "\033[K" << std::flush;
+    else
+      std::cerr << line.str() << "\n";
+  };
+}
+
+std::string result_path_for(const SolveArguments& args, const Scene& scene) {
+  if (!args.out.empty()) return args.out;
+  if (!args.out_dir.empty())
+    return (std::filesystem::path(args.out_dir) / (scene.name + ".result.json")).string();
+  return "";
+}
+
+void print_table(const std::vector<Result>& results, const std::vector<Scene>& scenes) {
+  std::printf("\n%-24s %7s %9s %-12s %-15s %10s %9s %12s %12s\n", "scene", "fibres", "contacts",
+              "rule", "status", "iterations", "time_s", "energy_Nmm", "overlap_mm");
+  for (std::size_t i = 0; i < results.size(); ++i) {
+    const Result& r = results[i];
+    std::size_t points = 0;
+    for (const ContactResult& c : r.contacts) points += c.points.size();
+    std::printf("%-24s %7zu %9zu %-12s %-15s %10ld %9.3f %12.5g %12.3g\n", r.scene.c_str(),
+                scenes[i].fibres.size(), points, r.rule.c_str(), r.status.c_str(), r.iterations,
+                r.wall_time_s, r.strain_energy_exact, r.max_overlap);
+  }
+}
+
+int run_solve(const SolveArguments& args) {
+  if (args.help_scene) {
+    std::cout << scene_format_help();
+    return kExitConverged;
+  }
+  if (args.scenes.empty()) {
+    std::cerr << "fibrecheck solve: error: no scene file given (see --help)\n";
+    return kExitBadInput;
+  }
+  if (args.scenes.size() > 1 && !args.out.empty()) {
+    std::cerr << "fibrecheck solve: error: --out: names one result file; use --out-dir for "
+                 "several scenes\n";
+    return kExitBadInput;
+  }
+  if (args.scenes.size() > 1 && !args.vtk.empty()) {
+    std::cerr << "fibrecheck solve: error: --vtk: takes one scene\n";
+    return kExitBadInput;
+  }
+  // Read and check every scene before solving anything: bad input writes nothing.
+  std::vector<Scene> scenes;
+  std::vector<SolverOptions> options;
+  try {
+    for (const std::string& path : args.scenes) {
+      Scene scene = read_scene(path);
+      if (args.slices > 0) scene.contact.slices = args.slices;
+      if (!args.rule.empty()) scene.solver.rule = parse_update_rule(args.rule, "command line", "--rule");
+      if (args.c > 0.0) scene.solver.c = args.c;
+      validate_scene(scene);
+      SolverOptions o = SolverOptions::from_scene(scene);
+      std::string why;
+      if (!o.is_valid(&why)) throw InputError(path, "solver", why);
+      scenes.push_back(std::move(scene));
+      options.push_back(std::move(o));
+    }
+  } catch (const InputError& e) {
+    std::cerr << "fibrecheck solve: error: " << e.what() << "\n";
+    return kExitBadInput;
+  }
+
+  const bool terminal = isatty(fileno(stderr));
+  int code = kExitConverged;
+  std::vector<Result> results;
+  for (std::size_t i = 0; i < scenes.size(); ++i) {
+    const Scene& scene = scenes[i];
+    SolverOptions& o = options[i];
+    if (!args.quiet) {
+      std::cout << "scene " << scene.name << " (" << scene.source << "): " << scene.fibres.size()
+                << " fibres, " << scene.loads.size() << " loads, " << scene.walls.size()
+                << " walls; rule " << to_string(o.rule) << ", slices " << scene.contact.slices
+                << ", overlap tolerance " << o.overlap_tolerance << " mm, max iterations "
+                << o.max_iterations << std::endl;
+      o.progress = progress_printer(terminal);
+      o.progress_interval_s = terminal ? 0.5 : 5.0;
+    }
+    Result result = solve_iteratively(scene, o);
+    if (!args.quiet && terminal) std::cerr << "\r\033[K";
+    if (!args.quiet) {
+      std::cout << "  rule " << result.rule << ": c = " << result.c
+                << " N/mm per point contact (slices: c/n under rule seed), estimate of "
+                   "2/lambda_max(W) = "
+                << result.c_stable_limit << " N/mm\n";
+      std::istringstream report(brief_report(result));
+      for (std::string line; std::getline(report, line);) std::cout << "  " << line << "\n";
+      for (const std::string& w : result.warnings) std::cout << "  warning: " << w << "\n";
+    }
+    const std::string path = result_path_for(args, scene);
+    try {
+      if (!path.empty()) write_result(path, result);
+      if (!args.vtk.empty()) write_vtk(args.vtk, scene, result);
+    } catch (const std::exception& e) {
+      std::cerr << "fibrecheck solve: error: " << e.what() << "\n";
+      return kExitBadInput;
+    }
+    if (!args.quiet && !path.empty()) std::cout << "  result written to " << path << "\n";
+    if (result.status != "converged") {
+      std::cerr << "fibrecheck solve: " << scene.source << ": " << result.status << ": "
+                << result.message << "\n";
+      code = kExitUnsolved;
+    }
+    results.push_back(std::move(result));
+  }
+  if (scenes.size() > 1) print_table(results, scenes);
+  return code;
+}
+
+}  // namespace
+
+void add_solve_command(CLI::App& app, int& exit_code) {
+  auto args = std::make_shared<SolveArguments>();
+  CLI::App* solve = app.add_subcommand("solve", "Solve scenes with the iterative method");
+  solve->add_option("scenes", args->scenes, "Scene files (JSON)");
+  solve->add_option("--out", args->out, "Result file (JSON) for one scene");
+  solve->add_option("--out-dir", args->out_dir, "Folder for SCENE_NAME.result.json files");
+  solve->add_option("--slices", args->slices, "Cross-sections n (overrides contact.slices)")
+      ->check(CLI::Range(1, 1000000));
+  solve->add_option("--rule", args->rule, "Force update rule: seed | auto | accelerated")
+      ->check(CLI::IsMember({"seed", "auto", "accelerated"}));
+  solve->add_option("--c", args->c, "Step c of P' = P + c*d in N/mm (rule seed)")
+      ->check(CLI::PositiveNumber);
+  solve->add_option("--vtk", args->vtk, "ParaView file (.vtp) of fibres and contact forces");
+  solve->add_flag("--quiet,-q", args->quiet, "Print nothing but errors");
+  solve->add_flag("--help-scene", args->help_scene, "Print every scene field with its default");
+  solve->callback([args, &exit_code] { exit_code = run_solve(*args); });
+}
+
+}  // namespace fibrecheck

@@ -1,0 +1,139 @@
+#include "result.h"
+
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "atomic_file.h"
+#include "input_error.h"
+
+namespace fibrecheck {
+
+using nlohmann::json;
+
+namespace {
+
+json vec(const Eigen::Vector3d& v) { return json::array({v[0], v[1], v[2]}); }
+
+Eigen::Vector3d to_vec(const json& j) { return {j.at(0).get<double>(), j.at(1).get<double>(), j.at(2).get<double>()}; }
+
+}  // namespace
+
+json result_to_json(const Result& r) {
+  json j;
+  j["scene"] = r.scene;
+  j["solver"] = r.solver;
+  j["rule"] = r.rule;
+  j["status"] = r.status;
+  j["criterion"] = r.criterion;
+  j["message"] = r.message;
+  j["iterations"] = r.iterations;
+  j["wall_time_s"] = r.wall_time_s;
+  j["strain_energy"] = r.strain_energy;
+  j["strain_energy_exact"] = r.strain_energy_exact;
+  j["max_overlap"] = r.max_overlap;
+  j["gap_force_residual"] = r.gap_force_residual;
+  j["c"] = r.c;
+  j["c_stable_limit"] = r.c_stable_limit;
+  j["axial_load_dropped"] = r.axial_load_dropped;
+  j["stages"] = r.stages;
+  j["warnings"] = r.warnings;
+  j["fibres"] = json::array();
+  for (const FibreResult& f : r.fibres) {
+    json d = json::array();
+    for (const Eigen::Vector3d& u : f.displacement) d.push_back(vec(u));
+    j["fibres"].push_back({{"id", f.id}, {"displacement", d}});
+  }
+  j["contacts"] = json::array();
+  for (const ContactResult& c : r.contacts) {
+    json points = json::array();
+    for (const ContactPoint& p : c.points)
+      points.push_back({{"position", p.position}, {"point", vec(p.point)}, {"force", vec(p.force)}});
+    j["contacts"].push_back({{"fibres", {c.fibres[0], c.fibres[1]}},
+                             {"kind", c.kind},
+                             {"total_force", c.total_force},
+                             {"points", points}});
+  }
+  j["walls"] = json::array();
+  for (const WallResult& w : r.walls)
+    j["walls"].push_back(
+        {{"id", w.id}, {"force", w.force}, {"pressure", w.pressure}, {"area", w.area}});
+  j["history"] = json::array();
+  for (const HistoryEntry& h : r.history)
+    j["history"].push_back({{"iteration", h.iteration},
+                            {"max_overlap", h.max_overlap},
+                            {"strain_energy", h.strain_energy}});
+  return j;
+}
+
+Result result_from_json(const json& j, const std::string& source) {
+  try {
+    Result r;
+    r.scene = j.at("scene").get<std::string>();
+    r.solver = j.value("solver", "");
+    r.rule = j.value("rule", "");
+    r.status = j.at("status").get<std::string>();
+    r.criterion = j.at("criterion").get<std::string>();
+    r.message = j.value("message", "");
+    r.iterations = j.at("iterations").get<long>();
+    r.wall_time_s = j.at("wall_time_s").get<double>();
+    r.strain_energy = j.at("strain_energy").get<double>();
+    r.strain_energy_exact = j.at("strain_energy_exact").get<double>();
+    r.max_overlap = j.at("max_overlap").get<double>();
+    r.gap_force_residual = j.value("gap_force_residual", 0.0);
+    r.c = j.value("c", 0.0);
+    r.c_stable_limit = j.value("c_stable_limit", 0.0);
+    r.axial_load_dropped = j.value("axial_load_dropped", 0.0);
+    r.stages = j.at("stages").get<std::vector<std::string>>();
+    r.warnings = j.value("warnings", std::vector<std::string>{});
+    for (const json& f : j.at("fibres")) {
+      FibreResult fr;
+      fr.id = f.at("id").get<std::string>();
+      for (const json& u : f.at("displacement")) fr.displacement.push_back(to_vec(u));
+      r.fibres.push_back(std::move(fr));
+    }
+    for (const json& c : j.at("contacts")) {
+      ContactResult cr;
+      cr.fibres = {c.at("fibres").at(0).get<std::string>(), c.at("fibres").at(1).get<std::string>()};
+      cr.kind = c.at("kind").get<std::string>();
+      cr.total_force = c.at("total_force").get<double>();
+      for (const json& p : c.at("points")) {
+        ContactPoint cp;
+        cp.position = p.at("position").get<double>();
+        if (p.contains("point")) cp.point = to_vec(p.at("point"));
+        cp.force = to_vec(p.at("force"));
+        cr.points.push_back(cp);
+      }
+      r.contacts.push_back(std::move(cr));
+    }
+    for (const json& w : j.at("walls"))
+      r.walls.push_back({w.at("id").get<std::string>(), w.at("force").get<double>(),
+                         w.value("pressure", 0.0), w.value("area", 0.0)});
+    for (const json& h : j.at("history"))
+      r.history.push_back({h.at("iteration").get<long>(), h.at("max_overlap").get<double>(),
+                           h.at("strain_energy").get<double>()});
+    return r;
+  } catch (const json::exception& e) {
+    throw InputError(source, "", std::string("not a fibrecheck result: ") + e.what());
+  }
+}
+
+Result read_result(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw InputError(path, "", "no such file");
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  json document;
+  try {
+    document = json::parse(buffer.str());
+  } catch (const json::parse_error& e) {
+    throw InputError(path, "", std::string("malformed JSON: ") + e.what());
+  }
+  return result_from_json(document, path);
+}
+
+void write_result(const std::string& path, const Result& result) {
+  write_file_atomically(path, result_to_json(result).dump(1) + "\n");
+}
+
+}  // namespace fibrecheck

@@ -1,0 +1,77 @@
+#pragma once
+
+#include <Eigen/Core>
+#include <array>
+#include <nlohmann/json_fwd.hpp>
+#include <string>
+#include <vector>
+
+namespace fibrecheck {
+
+/// One point of a contact: where it acts and the force the first fibre of the pair receives.
+struct ContactPoint {
+  double position = 0.0;  ///< fraction of the length of fibres[0] from its start
+  Eigen::Vector3d point = Eigen::Vector3d::Zero();  ///< mm, midpoint of the two centreline points
+  Eigen::Vector3d force = Eigen::Vector3d::Zero();  ///< N, on fibres[0]
+};
+
+/// All contact points between one pair (fibre–fibre or fibre–wall).
+struct ContactResult {
+  std::array<std::string, 2> fibres;  ///< [idA, idB] or [fibreId, wallId]
+  std::string kind;                   ///< "point" | "line" | "wall"
+  double total_force = 0.0;           ///< N, magnitude of the resultant
+  std::vector<ContactPoint> points;
+};
+
+struct FibreResult {
+  std::string id;
+  /// One [dx,dy,dz] (mm) per sample at s = 0, 1/(samples−1), …, 1.
+  std::vector<Eigen::Vector3d> displacement;
+};
+
+struct WallResult {
+  std::string id;
+  double force = 0.0;     ///< N, sum of the normal reactions
+  double pressure = 0.0;  ///< MPa, force / area of the tow's footprint on the wall
+  double area = 0.0;      ///< mm²
+};
+
+struct HistoryEntry {
+  long iteration = 0;
+  double max_overlap = 0.0;    ///< mm
+  double strain_energy = 0.0;  ///< N·mm
+};
+
+/// The result of either solver (DESIGN §5); the harness cannot tell the solvers apart.
+struct Result {
+  std::string scene;
+  std::string solver;  ///< "iterative" | "fem"
+  std::string rule;    ///< update rule (iterative) or method (fem)
+  std::string status;  ///< converged | max_iterations | diverged | unresolvable
+  std::string criterion;
+  std::string message;
+  long iterations = 0;
+  double wall_time_s = 0.0;
+  double strain_energy = 0.0;        ///< N·mm, trapezium rule at the slice spacing (Eq. 4.34)
+  double strain_energy_exact = 0.0;  ///< N·mm, ½ΣP·v
+  double max_overlap = 0.0;          ///< mm, largest overlap left (≤ 0 when all separate)
+  double gap_force_residual = 0.0;   ///< mm, largest gap carrying a force
+  double c = 0.0;                    ///< N/mm, step used (per point contact)
+  double c_stable_limit = 0.0;       ///< N/mm, estimate of 2/λmax(W)
+  double axial_load_dropped = 0.0;   ///< N, sum of |axial parts| dropped by the beam model
+  std::vector<std::string> stages;
+  std::vector<std::string> warnings;
+  std::vector<FibreResult> fibres;
+  std::vector<ContactResult> contacts;
+  std::vector<WallResult> walls;
+  std::vector<HistoryEntry> history;
+};
+
+nlohmann::json result_to_json(const Result& result);
+/// Reads a result back; throws InputError naming `source` and the field on a malformed result.
+Result result_from_json(const nlohmann::json& document, const std::string& source);
+Result read_result(const std::string& path);
+/// Writes the result atomically (temporary file + rename).
+void write_result(const std::string& path, const Result& result);
+
+}  // namespace fibrecheck

@@ -1,0 +1,461 @@
+#include "scene.h"
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <sstream>
+
+#include "atomic_file.h"
+#include "input_error.h"
+
+namespace fibrecheck {
+
+using nlohmann::json;
+
+namespace {
+
+/// A view of one JSON object at a path (`fibres[2]`): typed, range-checked reads that name the
+/// field on failure, and a final check that no key was left unread (a typo must not silently
+/// change the physics).
+class ObjectReader {
+ public:
+  ObjectReader(const json& object, std::string path, const std::string& file)
+      : object_(object), path_(std::move(path)), file_(file) {
+    if (!object_.is_object()) fail(path_, "must be a JSON object");
+  }
+
+  [[noreturn]] void fail(const std::string& field, const std::string& reason) const {
+    throw InputError(file_, field, reason);
+  }
+
+  std::string field(const std::string& key) const {
+    return path_.empty() ? key : path_ + "." + key;
+  }
+
+  bool has(const std::string& key) {
+    used_.insert(key);
+    return object_.contains(key) && !object_.at(key).is_null();
+  }
+
+  const json& at(const std::string& key) {
+    used_.insert(key);
+    if (!object_.contains(key)) fail(field(key), "is required");
+    return object_.at(key);
+  }
+
+  double number(const std::string& key, double fallback) {
+    return has(key) ? number(key) : fallback;
+  }
+
+  double number(const std::string& key) {
+    const json& value = at(key);
+    if (!value.is_number()) fail(field(key), "must be a number, got " + type_name(value));
+    const double x = value.get<double>();
+    if (!std::isfinite(x)) fail(field(key), "must be a finite number");
+    return x;
+  }
+
+  long integer(const std::string& key, long fallback) {
+    if (!has(key)) return fallback;
+    const json& value = at(key);
+    if (value.is_number_integer()) return value.get<long>();
+    if (value.is_number_float()) {
+      const double x = value.get<double>();
+      if (std::isfinite(x) && x == std::floor(x) && std::fabs(x) < 9e15) return static_cast<long>(x);
+    }
+    fail(field(key), "must be a whole number, got " + value.dump());
+  }
+
+  std::string string(const std::string& key) {
+    const json& value = at(key);
+    if (!value.is_string()) fail(field(key), "must be a string, got " + type_name(value));
+    return value.get<std::string>();
+  }
+
+  std::string string(const std::string& key, const std::string& fallback) {
+    return has(key) ? string(key) : fallback;
+  }
+
+  Eigen::Vector3d vector3(const std::string& key) {
+    const json& value = at(key);
+    if (!value.is_array() || value.size() != 3)
+      fail(field(key), "must be an array of three numbers, got " + value.dump());
+    Eigen::Vector3d v;
+    for (int i = 0; i < 3; ++i) {
+      if (!value[i].is_number())
+        fail(field(key) + "[" + std::to_string(i) + "]",
+             "must be a number, got " + type_name(value[i]));
+      v[i] = value[i].get<double>();
+      if (!std::isfinite(v[i]))
+        fail(field(key) + "[" + std::to_string(i) + "]", "must be a finite number");
+    }
+    return v;
+  }
+
+  Eigen::Vector3d vector3(const std::string& key, const Eigen::Vector3d& fallback) {
+    return has(key) ? vector3(key) : fallback;
+  }
+
+  const json& array(const std::string& key) {
+    const json& value = at(key);
+    if (!value.is_array()) fail(field(key), "must be an array, got " + type_name(value));
+    return value;
+  }
+
+  /// Rejects keys that were never asked for.
+  void finish() const {
+    for (auto it = object_.begin(); it != object_.end(); ++it)
+      if (!used_.count(it.key())) fail(field(it.key()), "unknown key");
+  }
+
+  static std::string type_name(const json& value) {
+    return std::string(value.type_name()) + (value.is_primitive() ? " " + value.dump() : "");
+  }
+
+ private:
+  const json& object_;
+  std::string path_;
+  const std::string& file_;
+  std::set<std::string> used_;
+};
+
+std::string indexed(const std::string& array, std::size_t i) {
+  return array + "[" + std::to_string(i) + "]";
+}
+
+void require_positive(ObjectReader& reader, const std::string& key, double value) {
+  if (!(value > 0.0)) reader.fail(reader.field(key), "must be positive, got " + json(value).dump());
+}
+
+FibreSpec read_fibre(const json& node, const std::string& path, const std::string& file) {
+  ObjectReader r(node, path, file);
+  FibreSpec f;
+  f.id = r.string("id");
+  if (f.id.empty()) r.fail(r.field("id"), "must not be empty");
+  f.start = r.vector3("start");
+  f.end = r.vector3("end");
+  f.radius = r.number("radius");
+  require_positive(r, "radius", f.radius);
+  f.youngs_modulus = r.number("youngs_modulus");
+  require_positive(r, "youngs_modulus", f.youngs_modulus);
+  const double scale = std::max({f.start.norm(), f.end.norm(), f.radius});
+  if ((f.end - f.start).norm() <= 1e-12 * scale)
+    r.fail(r.field("end"), "zero-length fibre: end equals start");
+  r.finish();
+  return f;
+}
+
+LoadSpec read_load(const json& node, const std::string& path, const std::string& file) {
+  ObjectReader r(node, path, file);
+  LoadSpec load;
+  load.fibre = r.string("fibre");
+  const std::string kind = r.string("kind", "point");
+  if (kind == "point") {
+    load.kind = LoadKind::point;
+    load.position = r.number("position", 0.5);
+    if (load.position < 0.0 || load.position > 1.0)
+      r.fail(r.field("position"),
+             "must lie in [0, 1] (fraction of the fibre's length), got " +
+                 json(load.position).dump());
+    load.force = r.vector3("force");
+  } else if (kind == "distributed") {
+    load.kind = LoadKind::distributed;
+    load.force = r.vector3("force_per_length");
+  } else {
+    r.fail(r.field("kind"), "must be \"point\" or \"distributed\", got \"" + kind + "\"");
+  }
+  r.finish();
+  return load;
+}
+
+WallSpec read_wall(const json& node, const std::string& path, const std::string& file) {
+  ObjectReader r(node, path, file);
+  WallSpec wall;
+  wall.id = r.string("id");
+  if (wall.id.empty()) r.fail(r.field("id"), "must not be empty");
+  wall.point = r.vector3("point");
+  wall.normal = r.vector3("normal");
+  if (!(wall.normal.norm() > 0.0)) r.fail(r.field("normal"), "must not be the zero vector");
+  wall.normal.normalize();
+  r.finish();
+  return wall;
+}
+
+}  // namespace
+
+int Scene::fibre_index(const std::string& id) const {
+  for (std::size_t i = 0; i < fibres.size(); ++i)
+    if (fibres[i].id == id) return static_cast<int>(i);
+  return -1;
+}
+
+double Scene::overlap_tolerance() const {
+  if (solver.overlap_tolerance) return *solver.overlap_tolerance;
+  double smallest = std::numeric_limits<double>::infinity();
+  for (const FibreSpec& f : fibres) smallest = std::min(smallest, f.radius);
+  return std::isfinite(smallest) ? 1e-5 * smallest : 1e-7;
+}
+
+const char* to_string(UpdateRule rule) {
+  switch (rule) {
+    case UpdateRule::seed: return "seed";
+    case UpdateRule::automatic: return "auto";
+    case UpdateRule::accelerated: return "accelerated";
+  }
+  return "?";
+}
+
+const char* to_string(LoadKind kind) { return kind == LoadKind::point ? "point" : "distributed"; }
+
+UpdateRule parse_update_rule(const std::string& text, const std::string& file,
+                             const std::string& field) {
+  if (text == "seed") return UpdateRule::seed;
+  if (text == "auto") return UpdateRule::automatic;
+  if (text == "accelerated") return UpdateRule::accelerated;
+  throw InputError(file, field,
+                   "must be \"seed\", \"auto\" or \"accelerated\", got \"" + text + "\"");
+}
+
+Scene scene_from_json(const json& document, const std::string& source) {
+  Scene scene;
+  scene.source = source;
+  ObjectReader top(document, "", source);
+  scene.name = top.string("name", std::filesystem::path(source).stem().string());
+  top.string("description", "");
+  if (top.has("generator") && !top.at("generator").is_object())
+    top.fail("generator", "must be a JSON object");
+
+  const json& fibres = top.array("fibres");
+  if (fibres.empty()) top.fail("fibres", "must list at least one fibre");
+  std::set<std::string> ids;
+  for (std::size_t i = 0; i < fibres.size(); ++i) {
+    scene.fibres.push_back(read_fibre(fibres[i], indexed("fibres", i), source));
+    if (!ids.insert(scene.fibres.back().id).second)
+      throw InputError(source, indexed("fibres", i) + ".id",
+                       "duplicate fibre id \"" + scene.fibres.back().id + "\"");
+  }
+
+  if (top.has("loads")) {
+    const json& loads = top.array("loads");
+    for (std::size_t i = 0; i < loads.size(); ++i) {
+      scene.loads.push_back(read_load(loads[i], indexed("loads", i), source));
+      if (!ids.count(scene.loads.back().fibre))
+        throw InputError(source, indexed("loads", i) + ".fibre",
+                         "no fibre with id \"" + scene.loads.back().fibre + "\"");
+    }
+  }
+
+  if (top.has("walls")) {
+    const json& walls = top.array("walls");
+    std::set<std::string> wall_ids;
+    for (std::size_t i = 0; i < walls.size(); ++i) {
+      scene.walls.push_back(read_wall(walls[i], indexed("walls", i), source));
+      const std::string& id = scene.walls.back().id;
+      if (ids.count(id) || !wall_ids.insert(id).second)
+        throw InputError(source, indexed("walls", i) + ".id",
+                         "duplicate id \"" + id + "\" (wall and fibre ids must all differ)");
+    }
+  }
+
+  if (top.has("contact")) {
+    ObjectReader r(top.at("contact"), "contact", source);
+    ContactSettings& c = scene.contact;
+    const long slices = r.integer("slices", c.slices);
+    if (slices < 1 || slices > 1000000)
+      r.fail(r.field("slices"), "must be a whole number from 1 to 1000000, got " +
+                                    std::to_string(slices));
+    c.slices = static_cast<int>(slices);
+    c.axis = r.vector3("axis", c.axis);
+    if (!(c.axis.norm() > 0.0)) r.fail(r.field("axis"), "must not be the zero vector");
+    c.axis.normalize();
+    c.friction = r.number("friction", c.friction);
+    if (c.friction < 0.0) r.fail(r.field("friction"), "must not be negative");
+    c.parallel_angle_deg = r.number("parallel_angle_deg", c.parallel_angle_deg);
+    if (!(c.parallel_angle_deg > 0.0 && c.parallel_angle_deg < 90.0))
+      r.fail(r.field("parallel_angle_deg"), "must lie in (0, 90) degrees");
+    r.finish();
+  }
+
+  if (top.has("solver")) {
+    ObjectReader r(top.at("solver"), "solver", source);
+    SolverSettings& s = scene.solver;
+    if (r.has("rule")) s.rule = parse_update_rule(r.string("rule"), source, r.field("rule"));
+    if (r.has("c")) {
+      s.c = r.number("c");
+      require_positive(r, "c", *s.c);
+    }
+    if (r.has("overlap_tolerance")) {
+      s.overlap_tolerance = r.number("overlap_tolerance");
+      require_positive(r, "overlap_tolerance", *s.overlap_tolerance);
+    }
+    s.energy_tolerance = r.number("energy_tolerance", s.energy_tolerance);
+    if (s.energy_tolerance < 0.0) r.fail(r.field("energy_tolerance"), "must not be negative");
+    const long window = r.integer("energy_window", s.energy_window);
+    if (window < 1 || window > 1000000)
+      r.fail(r.field("energy_window"), "must be a whole number from 1 to 1000000");
+    s.energy_window = static_cast<int>(window);
+    s.max_iterations = r.integer("max_iterations", s.max_iterations);
+    if (s.max_iterations < 1) r.fail(r.field("max_iterations"), "must be at least 1");
+    r.finish();
+  }
+
+  if (top.has("output")) {
+    ObjectReader r(top.at("output"), "output", source);
+    const long samples = r.integer("samples", scene.output.samples);
+    if (samples < 2 || samples > 1000000)
+      r.fail(r.field("samples"), "must be a whole number from 2 to 1000000");
+    scene.output.samples = static_cast<int>(samples);
+    r.finish();
+  }
+  top.finish();
+  validate_scene(scene);
+  return scene;
+}
+
+void validate_scene(const Scene& scene) {
+  const std::string& file = scene.source;
+  if (scene.solver.rule == UpdateRule::seed && !scene.solver.c)
+    throw InputError(file, "solver.c", "is required by rule \"seed\" (the step c of P' = P + c·d)");
+  if (scene.contact.slices < 1)
+    throw InputError(file, "contact.slices", "must be at least 1");
+  if (scene.solver.c && !(*scene.solver.c > 0.0 && std::isfinite(*scene.solver.c)))
+    throw InputError(file, "solver.c", "must be a positive finite number");
+  if (scene.solver.max_iterations < 1)
+    throw InputError(file, "solver.max_iterations", "must be at least 1");
+}
+
+Scene read_scene(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) {
+    const bool exists = std::filesystem::exists(path);
+    throw InputError(path, "", exists ? "cannot be read" : "no such file");
+  }
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  json document;
+  try {
+    document = json::parse(buffer.str());
+  } catch (const json::parse_error& e) {
+    std::string reason = e.what();
+    const auto colon = reason.find("parse error");
+    if (colon != std::string::npos) reason = reason.substr(colon);
+    throw InputError(path, "", "malformed JSON (" + reason + ")");
+  }
+  return scene_from_json(document, path);
+}
+
+namespace {
+json vec(const Eigen::Vector3d& v) { return json::array({v[0], v[1], v[2]}); }
+}  // namespace
+
+json scene_to_json(const Scene& scene) {
+  json j;
+  j["name"] = scene.name;
+  j["fibres"] = json::array();
+  for (const FibreSpec& f : scene.fibres)
+    j["fibres"].push_back({{"id", f.id},
+                           {"start", vec(f.start)},
+                           {"end", vec(f.end)},
+                           {"radius", f.radius},
+                           {"youngs_modulus", f.youngs_modulus}});
+  j["loads"] = json::array();
+  for (const LoadSpec& l : scene.loads) {
+    json load = {{"fibre", l.fibre}, {"kind", to_string(l.kind)}};
+    if (l.kind == LoadKind::point) {
+      load["position"] = l.position;
+      load["force"] = vec(l.force);
+    } else {
+      load["force_per_length"] = vec(l.force);
+    }
+    j["loads"].push_back(load);
+  }
+  j["walls"] = json::array();
+  for (const WallSpec& w : scene.walls)
+    j["walls"].push_back({{"id", w.id}, {"point", vec(w.point)}, {"normal", vec(w.normal)}});
+  j["contact"] = {{"slices", scene.contact.slices},
+                  {"axis", vec(scene.contact.axis)},
+                  {"friction", scene.contact.friction},
+                  {"parallel_angle_deg", scene.contact.parallel_angle_deg}};
+  j["solver"] = {{"rule", to_string(scene.solver.rule)},
+                 {"c", scene.solver.c ? json(*scene.solver.c) : json(nullptr)},
+                 {"overlap_tolerance", scene.solver.overlap_tolerance
+                                           ? json(*scene.solver.overlap_tolerance)
+                                           : json(nullptr)},
+                 {"energy_tolerance", scene.solver.energy_tolerance},
+                 {"energy_window", scene.solver.energy_window},
+                 {"max_iterations", scene.solver.max_iterations}};
+  j["output"] = {{"samples", scene.output.samples}};
+  return j;
+}
+
+void write_scene(const std::string& path, const Scene& scene) {
+  write_file_atomically(path, scene_to_json(scene).dump(2) + "\n");
+}
+
+std::string scene_format_help() {
+  // The defaults are read from a default-constructed Scene, so they cannot drift from the parser.
+  const Scene d;
+  std::ostringstream out;
+  auto vec3 = [](const Eigen::Vector3d& v) {
+    std::ostringstream s;
+    s << "[" << v[0] << "," << v[1] << "," << v[2] << "]";
+    return s.str();
+  };
+  out << "Scene file (JSON). Units are consistent; the defaults assume mm, N, MPa.\n"
+         "Unknown keys are errors. Every field but `fibres` has a default.\n\n"
+         "  name                          string   default: the file name\n"
+         "  description                   string   free text, ignored by the solvers\n"
+         "  fibres[]                      required, at least one\n"
+         "    id                          string, unique\n"
+         "    start, end                  [x,y,z] mm, the two pinned supports\n"
+         "    radius                      mm, > 0\n"
+         "    youngs_modulus              MPa, > 0\n"
+         "  loads[]                       default: none\n"
+         "    fibre                       id of a fibre\n"
+         "    kind                        \"point\" | \"distributed\"   default: \"point\"\n"
+         "    position                    fraction of length from start, [0,1]   default: 0.5\n"
+         "    force                       [Fx,Fy,Fz] N (point loads)\n"
+         "    force_per_length            [qx,qy,qz] N/mm (distributed, uniform)\n"
+         "  walls[]                       rigid planes, default: none\n"
+         "    id                          string, unique\n"
+         "    point, normal               [x,y,z]; fibres stay on the side the normal points to\n"
+         "  contact\n"
+         "    slices                      cross-sections n   default: "
+      << d.contact.slices
+      << "\n"
+         "    axis                        tow axis   default: "
+      << vec3(d.contact.axis)
+      << "\n"
+         "    friction                    Coulomb coefficient mu   default: "
+      << d.contact.friction
+      << "\n"
+         "    parallel_angle_deg          fibres within this angle of the axis are sliced as\n"
+         "                                line contacts   default: "
+      << d.contact.parallel_angle_deg
+      << "\n"
+         "  solver\n"
+         "    rule                        \"seed\" | \"auto\" | \"accelerated\"   default: \""
+      << to_string(d.solver.rule)
+      << "\"\n"
+         "    c                           N/mm, step of P' = P + c*d (rule seed; per slice it is\n"
+         "                                c/n, Eq. 4.28)   default: null\n"
+         "    overlap_tolerance           t_d, mm   default: null = 1e-5 x smallest radius\n"
+         "    energy_tolerance            t_U, N*mm, 0 = energy criterion off   default: "
+      << d.solver.energy_tolerance
+      << "\n"
+         "    energy_window               n_i iterations   default: "
+      << d.solver.energy_window
+      << "\n"
+         "    max_iterations              default: "
+      << d.solver.max_iterations
+      << "\n"
+         "  output\n"
+         "    samples                     displacement samples per fibre   default: "
+      << d.output.samples << "\n";
+  return out.str();
+}
+
+}  // namespace fibrecheck

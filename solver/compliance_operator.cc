@@ -1,0 +1,39 @@
+#include "compliance_operator.h"
+
+#include <cmath>
+
+namespace fibrecheck {
+
+void ComplianceOperator::apply(const Eigen::VectorXd& x, Eigen::VectorXd& y) const {
+  const std::size_t n = contacts_.size();
+  std::vector<Eigen::Vector3d> force_on_a(n), u_a, u_b;
+  for (std::size_t k = 0; k < n; ++k) {
+    const Contact& c = contacts_[k];
+    force_on_a[k] = (c.kind == ContactKind::wall ? x[k] : -x[k]) * c.normal;
+  }
+  superposition_.contact_displacements(contacts_, force_on_a, false, u_a, u_b);
+  y.resize(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    const Contact& c = contacts_[k];
+    y[k] = c.kind == ContactKind::wall ? c.normal.dot(u_a[k]) : c.normal.dot(u_b[k] - u_a[k]);
+  }
+}
+
+double ComplianceOperator::largest_eigenvalue(int max_iterations, double tolerance) const {
+  const Eigen::Index n = static_cast<Eigen::Index>(contacts_.size());
+  if (n == 0) return 0.0;
+  Eigen::VectorXd x = Eigen::VectorXd::Ones(n) / std::sqrt(static_cast<double>(n)), y;
+  double lambda = 0.0;
+  for (int it = 0; it < max_iterations; ++it) {
+    apply(x, y);
+    const double next = x.dot(y);  // Rayleigh quotient, ‖x‖ = 1
+    const double norm = y.norm();
+    if (!(norm > 0.0) || !std::isfinite(norm)) return std::max(lambda, next);
+    x = y / norm;
+    if (it > 2 && std::fabs(next - lambda) <= tolerance * std::fabs(next)) return next;
+    lambda = next;
+  }
+  return lambda;
+}
+
+}  // namespace fibrecheck

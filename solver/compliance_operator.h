@@ -1,0 +1,33 @@
+#pragma once
+
+#include <Eigen/Core>
+#include <vector>
+
+#include "contact.h"
+#include "superposition.h"
+
+namespace fibrecheck {
+
+/// The contact compliance (Delassus) operator W: (W·x)_k is the overlap that forces x_k along the
+/// contact normals remove at contact k. The force update P ← max(0, P + c·d) of §4.3.2 is a
+/// projected Richardson iteration on this operator, stable only for c < 2/λmax(W). W is applied
+/// matrix-free through the beam superposition, O(k + n) per fibre.
+class ComplianceOperator {
+ public:
+  ComplianceOperator(const Superposition& superposition, const std::vector<Contact>& contacts)
+      : superposition_(superposition), contacts_(contacts) {}
+
+  /// y = W·x.
+  void apply(const Eigen::VectorXd& x, Eigen::VectorXd& y) const;
+
+  /// λmax(W) by power iteration from the all-ones vector (W is symmetric positive semi-definite
+  /// with non-negative diagonal), stopping when the Rayleigh quotient changes by less than
+  /// `tolerance` relative or after `max_iterations`. Returns 0 when there are no contacts.
+  double largest_eigenvalue(int max_iterations = 60, double tolerance = 1e-4) const;
+
+ private:
+  const Superposition& superposition_;
+  const std::vector<Contact>& contacts_;
+};
+
+}  // namespace fibrecheck

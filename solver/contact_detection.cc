@@ -1,0 +1,284 @@
+#include "contact_detection.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "beam.h"
+#include "closest_points.h"
+#include "slice_broad_phase.h"
+
+namespace fibrecheck {
+
+const char* to_string(ContactKind kind) {
+  switch (kind) {
+    case ContactKind::point: return "point";
+    case ContactKind::line: return "line";
+    case ContactKind::wall: return "wall";
+  }
+  return "?";
+}
+
+ContactDetector::ContactDetector(const std::vector<Fibre>& fibres, const Scene& scene,
+                                 double margin)
+    : fibres_(fibres),
+      walls_(scene.walls),
+      axis_(scene.contact.axis.normalized()),
+      slices_(scene.contact.slices),
+      margin_(margin) {
+  std::tie(g1_, g2_) = cross_section_axes(axis_);
+  const int m = std::max(scene.contact.slices, 20);
+  grid_.resize(m + 1);
+  for (int j = 0; j <= m; ++j) grid_[j] = static_cast<double>(j) / m;
+  x0_ = INFINITY;
+  x1_ = -INFINITY;
+  int others = 0;
+  for (std::size_t i = 0; i < fibres_.size(); ++i) {
+    if (fibres_[i].along_tow_axis) {
+      tow_fibres_.push_back(static_cast<int>(i));
+      x0_ = std::min({x0_, fibres_[i].start.dot(axis_), fibres_[i].end.dot(axis_)});
+      x1_ = std::max({x1_, fibres_[i].start.dot(axis_), fibres_[i].end.dot(axis_)});
+    } else {
+      ++others;
+    }
+  }
+  slicing_ = tow_fibres_.size() >= 2;
+  point_pairs_possible_ = fibres_.size() >= 2 && others >= 1;
+  if (!slicing_) x0_ = 0, x1_ = 1;
+}
+
+Eigen::Vector3d ContactDetector::interpolate(const std::vector<std::vector<Eigen::Vector3d>>& grid_u, int fibre,
+                                             double s) const {
+  const auto& u = grid_u[fibre];
+  const int m = static_cast<int>(grid_.size()) - 1;
+  const int j = std::min(std::max(static_cast<int>(std::floor(s * m)), 0), m - 1);
+  const double w = s * m - j;
+  return (1.0 - w) * u[j] + w * u[j + 1];
+}
+
+void ContactDetector::set_normal_and_overlap(Contact& c, const Eigen::Vector3d& difference,
+                                             double radii, bool first) const {
+  const double distance = difference.norm();
+  // The normal follows the centres only while the contact carries no force. Once it pushes, its
+  // normal stays the one of the state it was found in (before the fibres touched), and the
+  // overlap is measured along it: the contact problem then stays the same linear complementarity
+  // problem from iteration to iteration instead of turning with the fibres. Centres closer than
+  // half the contact distance give no trustworthy direction either (it flips as centres pass).
+  const bool coincident = distance < 0.5 * radii;
+  if (first && coincident) {
+    Eigen::Vector3d n = c.kind == ContactKind::point ? fibres_[c.a].t.cross(fibres_[c.b].t)
+                                                     : Eigen::Vector3d(g2_);
+    if (n.norm() < 1e-12) n = g2_;
+    c.normal = n.normalized();
+  } else if (!coincident && (first || c.force <= 0.0)) {
+    c.normal = difference / distance;
+  }
+  c.normal_held = coincident;
+  // Eq. 4.14 with the overlap positive: d = (rA + rB) − n·(Bc − Ac), which is
+  // (rA + rB) − ‖Bc − Ac‖ whenever the normal is the current direction.
+  c.overlap = radii - c.normal.dot(difference);
+}
+
+std::vector<Contact> ContactDetector::detect(
+    const std::vector<std::vector<Eigen::Vector3d>>& grid_u) const {
+  std::vector<Contact> contacts;
+  if (slicing_) detect_lines(grid_u, contacts);
+  if (point_pairs_possible_) detect_points(grid_u, contacts);
+  if (!walls_.empty()) detect_walls(grid_u, contacts);
+  for (Contact& c : contacts) c.compliance = self_compliance(c);
+  return contacts;
+}
+
+void ContactDetector::detect_lines(const std::vector<std::vector<Eigen::Vector3d>>& grid_u,
+                                   std::vector<Contact>& out) const {
+  std::vector<Eigen::Vector2d> centres;
+  std::vector<Eigen::Vector3d> centres3;
+  std::vector<double> radii, params;
+  std::vector<int> owner;
+  std::vector<std::pair<int, int>> pairs;
+  for (int i = 0; i < slices_; ++i) {
+    const double x = slice_position(i);
+    centres.clear();
+    centres3.clear();
+    radii.clear();
+    params.clear();
+    owner.clear();
+    for (int f : tow_fibres_) {
+      const Fibre& fibre = fibres_[f];
+      const double along = (fibre.end - fibre.start).dot(axis_);
+      const double s = (x - fibre.start.dot(axis_)) / along;
+      if (!(s > 1e-12 && s < 1.0 - 1e-12)) continue;
+      const Eigen::Vector3d c = fibre.point(s) + interpolate(grid_u, f, s);
+      centres.emplace_back(c.dot(g1_), c.dot(g2_));
+      centres3.push_back(c);
+      radii.push_back(fibre.radius);
+      params.push_back(s);
+      owner.push_back(f);
+    }
+    if (centres.size() > 2)
+      slice_pairs(centres, radii, margin_, pairs);
+    else
+      slice_pairs_all(centres, radii, margin_, pairs);
+    for (const auto& [p, q] : pairs) {
+      const int first = owner[p] < owner[q] ? p : q, second = owner[p] < owner[q] ? q : p;
+      Contact c;
+      c.kind = ContactKind::line;
+      c.a = owner[first];
+      c.b = owner[second];
+      c.slice = i;
+      c.s_a = params[first];
+      c.s_b = params[second];
+      c.step_scale = 1.0 / slices_;  // Eq. 4.28: a slice carries 1/n of the line's force
+      Eigen::Vector3d difference = centres3[second] - centres3[first];
+      difference -= difference.dot(axis_) * axis_;
+      set_normal_and_overlap(c, difference, radii[first] + radii[second], true);
+      out.push_back(c);
+    }
+  }
+}
+
+void ContactDetector::closest_on_polylines(const std::vector<std::vector<Eigen::Vector3d>>& grid_u,
+                                           int a, int b, int ia0, int ia1, int ib0, int ib1,
+                                           Contact& c, double& distance) const {
+  distance = INFINITY;
+  const Fibre& fa = fibres_[a];
+  const Fibre& fb = fibres_[b];
+  for (int i = ia0; i < ia1; ++i) {
+    const Eigen::Vector3d a1 = fa.point(grid_[i]) + grid_u[a][i];
+    const Eigen::Vector3d a2 = fa.point(grid_[i + 1]) + grid_u[a][i + 1];
+    for (int j = ib0; j < ib1; ++j) {
+      const Eigen::Vector3d b1 = fb.point(grid_[j]) + grid_u[b][j];
+      const Eigen::Vector3d b2 = fb.point(grid_[j + 1]) + grid_u[b][j + 1];
+      const ClosestPoints cp = segment_closest_points(a1, a2, b1, b2);
+      if (cp.distance < distance) {
+        distance = cp.distance;
+        c.s_a = grid_[i] + cp.mu_a * (grid_[i + 1] - grid_[i]);
+        c.s_b = grid_[j] + cp.mu_b * (grid_[j + 1] - grid_[j]);
+      }
+    }
+  }
+}
+
+void ContactDetector::detect_points(const std::vector<std::vector<Eigen::Vector3d>>& grid_u,
+                                    std::vector<Contact>& out) const {
+  const int n = static_cast<int>(fibres_.size());
+  const int m = static_cast<int>(grid_.size()) - 1;
+  // Broad phase: boxes around each deformed polyline, swept along x.
+  std::vector<Eigen::Vector3d> lo(n), hi(n);
+  for (int f = 0; f < n; ++f) {
+    lo[f] = hi[f] = fibres_[f].start + grid_u[f][0];
+    for (int j = 1; j <= m; ++j) {
+      const Eigen::Vector3d p = fibres_[f].point(grid_[j]) + grid_u[f][j];
+      lo[f] = lo[f].cwiseMin(p);
+      hi[f] = hi[f].cwiseMax(p);
+    }
+    const double reach = fibres_[f].radius + 0.5 * margin_;
+    lo[f].array() -= reach;
+    hi[f].array() += reach;
+  }
+  std::vector<int> order(n);
+  for (int f = 0; f < n; ++f) order[f] = f;
+  std::sort(order.begin(), order.end(), [&](int x, int y) { return lo[x][0] < lo[y][0]; });
+  for (int p = 0; p < n; ++p) {
+    for (int q = p + 1; q < n && lo[order[q]][0] <= hi[order[p]][0]; ++q) {
+      const int a = std::min(order[p], order[q]), b = std::max(order[p], order[q]);
+      if (fibres_[a].along_tow_axis && fibres_[b].along_tow_axis && slicing_) continue;
+      if ((lo[a].array() > hi[b].array()).any() || (lo[b].array() > hi[a].array()).any()) continue;
+      Contact c;
+      c.kind = ContactKind::point;
+      c.a = a;
+      c.b = b;
+      double distance;
+      closest_on_polylines(grid_u, a, b, 0, m, 0, m, c, distance);
+      const double radii = fibres_[a].radius + fibres_[b].radius;
+      if (distance - radii >= margin_) continue;
+      const Eigen::Vector3d difference = (fibres_[b].point(c.s_b) + interpolate(grid_u, b, c.s_b)) -
+                                         (fibres_[a].point(c.s_a) + interpolate(grid_u, a, c.s_a));
+      set_normal_and_overlap(c, difference, radii, true);
+      out.push_back(c);
+    }
+  }
+}
+
+void ContactDetector::detect_walls(const std::vector<std::vector<Eigen::Vector3d>>& grid_u,
+                                   std::vector<Contact>& out) const {
+  for (std::size_t f = 0; f < fibres_.size(); ++f) {
+    for (int j = 0; j < slices_; ++j) {
+      const double s = (j + 0.5) / slices_;
+      const Eigen::Vector3d centre = fibres_[f].point(s) + interpolate(grid_u, f, s);
+      for (std::size_t w = 0; w < walls_.size(); ++w) {
+        const double overlap = fibres_[f].radius - walls_[w].normal.dot(centre - walls_[w].point);
+        if (overlap <= -margin_) continue;
+        Contact c;
+        c.kind = ContactKind::wall;
+        c.a = static_cast<int>(f);
+        c.b = static_cast<int>(w);
+        c.slice = j;
+        c.s_a = s;
+        c.normal = walls_[w].normal;
+        c.overlap = overlap;
+        c.step_scale = 1.0 / slices_;
+        out.push_back(c);
+      }
+    }
+  }
+}
+
+int ContactDetector::measure(std::vector<Contact>& contacts, const std::vector<Eigen::Vector3d>& u_a,
+                             const std::vector<Eigen::Vector3d>& u_b,
+                             const std::vector<std::vector<Eigen::Vector3d>>& grid_u) const {
+  const int m = static_cast<int>(grid_.size()) - 1;
+  int held = 0;
+  const int count = static_cast<int>(contacts.size());
+#pragma omp parallel for schedule(static) reduction(+ : held) if (count > 4096)
+  for (int k = 0; k < count; ++k) {
+    Contact& c = contacts[k];
+    const Eigen::Vector3d ac = fibres_[c.a].point(c.s_a) + u_a[k];
+    if (c.kind == ContactKind::wall) {
+      c.overlap = fibres_[c.a].radius - c.normal.dot(ac - walls_[c.b].point);
+      continue;
+    }
+    Eigen::Vector3d difference = fibres_[c.b].point(c.s_b) + u_b[k] - ac;
+    if (c.kind == ContactKind::line) difference -= difference.dot(axis_) * axis_;
+    set_normal_and_overlap(c, difference, fibres_[c.a].radius + fibres_[c.b].radius, false);
+    held += c.normal_held ? 1 : 0;
+    if (c.kind == ContactKind::point) {
+      // Follow the closest points for the next evaluation: search a few segments around them.
+      const int ia = std::min(static_cast<int>(c.s_a * m), m - 1);
+      const int ib = std::min(static_cast<int>(c.s_b * m), m - 1);
+      Contact moved = c;
+      double distance;
+      closest_on_polylines(grid_u, c.a, c.b, std::max(ia - 2, 0), std::min(ia + 3, m),
+                           std::max(ib - 2, 0), std::min(ib + 3, m), moved, distance);
+      c.s_a = moved.s_a;
+      c.s_b = moved.s_b;
+    }
+  }
+  return held;
+}
+
+double ContactDetector::self_compliance(const Contact& c) const {
+  auto along = [&](int f, double s) {
+    const Fibre& fibre = fibres_[f];
+    const double axial = c.normal.dot(fibre.t);
+    return point_compliance(s * fibre.length, fibre.length, fibre.EI) * (1.0 - axial * axial);
+  };
+  double w = along(c.a, c.s_a);
+  if (c.kind != ContactKind::wall) w += along(c.b, c.s_b);
+  return w;
+}
+
+std::string ContactDetector::describe(const Contact& c) const {
+  std::ostringstream out;
+  out.precision(4);
+  if (c.kind == ContactKind::wall)
+    out << "fibre " << fibres_[c.a].id << " and wall " << walls_[c.b].id << " at s = " << c.s_a
+        << " of " << fibres_[c.a].id;
+  else
+    out << "fibres " << fibres_[c.a].id << " and " << fibres_[c.b].id << " at s = " << c.s_a
+        << " of " << fibres_[c.a].id << " (s = " << c.s_b << " of " << fibres_[c.b].id << ")";
+  if (c.kind == ContactKind::line) out << ", slice " << c.slice;
+  return out.str();
+}
+
+}  // namespace fibrecheck

@@ -1,0 +1,45 @@
+#include "convergence.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace fibrecheck {
+
+Residuals measure_residuals(const std::vector<Contact>& contacts) {
+  Residuals r;
+  r.max_overlap = contacts.empty() ? 0.0 : -INFINITY;
+  for (const Contact& c : contacts) {
+    r.max_overlap = std::max(r.max_overlap, c.overlap);
+    if (c.force > 0.0) r.gap_force = std::max(r.gap_force, -c.overlap);
+  }
+  r.overlap = std::max(0.0, r.max_overlap);
+  return r;
+}
+
+bool EnergyWindow::push(double energy) {
+  energies_.push_back(energy);
+  if (static_cast<int>(energies_.size()) > window_ + 1) energies_.pop_front();
+  if (tolerance_ <= 0.0 || static_cast<int>(energies_.size()) < window_ + 1) return false;
+  for (double e : energies_)
+    if (std::fabs(e - energy) > tolerance_) return false;
+  return true;
+}
+
+DivergenceMonitor::Verdict DivergenceMonitor::observe(long iteration, double residual) {
+  if (reference_ < 0.0) {
+    reference_ = std::max(residual, tolerance_);
+    best_ = residual;
+    best_iteration_ = iteration;
+    return Verdict::fine;
+  }
+  if (residual > 1e4 * reference_) return Verdict::growth;
+  if (residual < best_) {
+    best_ = residual;
+    best_iteration_ = iteration;
+  }
+  const long patience = std::max(5000L, iteration / 5);
+  if (iteration - best_iteration_ > patience) return Verdict::stalled;
+  return Verdict::fine;
+}
+
+}  // namespace fibrecheck

@@ -1,0 +1,53 @@
+#pragma once
+
+#include <deque>
+#include <vector>
+
+#include "contact.h"
+
+namespace fibrecheck {
+
+/// How far a state is from "every contact just touching" (seed §4.3.6), reported separately:
+///  - overlap: the largest overlap d anywhere (must be < t_d);
+///  - gap_force: the largest gap −d at a contact that carries force (no gap may carry a force).
+struct Residuals {
+  double overlap = 0.0;      ///< mm, max(0, max d)
+  double gap_force = 0.0;    ///< mm, max over P > 0 of max(0, −d)
+  double max_overlap = 0.0;  ///< mm, max d over all candidates (may be negative)
+  double total() const { return overlap > gap_force ? overlap : gap_force; }
+};
+
+Residuals measure_residuals(const std::vector<Contact>& contacts);
+
+/// The energy criterion of §4.3.6: converged when the last n_i energies all lie within an absolute
+/// tolerance t_U of the current one.
+class EnergyWindow {
+ public:
+  EnergyWindow(int window, double tolerance) : window_(window), tolerance_(tolerance) {}
+  /// Adds the current energy; true when the window is full and settled.
+  bool push(double energy);
+  void clear() { energies_.clear(); }
+
+ private:
+  int window_;
+  double tolerance_;
+  std::deque<double> energies_;
+};
+
+/// Watches the residual for instability: growth without bound or no progress at all for a long
+/// stretch (the update oscillating, as P' = P + c·d does for c ≥ 2/λmax(W)).
+class DivergenceMonitor {
+ public:
+  explicit DivergenceMonitor(double tolerance) : tolerance_(tolerance) {}
+  enum class Verdict { fine, growth, stalled };
+  Verdict observe(long iteration, double residual);
+  void reset() { reference_ = -1.0; }
+
+ private:
+  double tolerance_;
+  double reference_ = -1.0;
+  double best_ = 0.0;
+  long best_iteration_ = 0;
+};
+
+}  // namespace fibrecheck

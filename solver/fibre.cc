@@ -1,0 +1,41 @@
+#include "fibre.h"
+
+#include <cmath>
+
+namespace fibrecheck {
+
+double second_moment_of_area(double radius) { return M_PI * std::pow(radius, 4) / 4.0; }
+
+std::pair<Eigen::Vector3d, Eigen::Vector3d> cross_section_axes(const Eigen::Vector3d& axis) {
+  const Eigen::Vector3d a = axis.normalized();
+  // Start from the global axis least aligned with the tow axis, in the cyclic order after it, so
+  // that the x axis gives (y, z), the y axis (z, x) and the z axis (x, y).
+  int k = 0;
+  a.cwiseAbs().maxCoeff(&k);
+  Eigen::Vector3d g1 = Eigen::Vector3d::Unit((k + 1) % 3);
+  g1 = (g1 - g1.dot(a) * a).normalized();
+  const Eigen::Vector3d g2 = a.cross(g1);
+  return {g1, g2};
+}
+
+Fibre make_fibre(const FibreSpec& spec, const Eigen::Vector3d& axis, double parallel_angle_deg) {
+  Fibre f;
+  f.id = spec.id;
+  f.start = spec.start;
+  f.end = spec.end;
+  f.radius = spec.radius;
+  f.length = (spec.end - spec.start).norm();
+  f.EI = spec.youngs_modulus * second_moment_of_area(spec.radius);
+  f.t = (spec.end - spec.start) / f.length;
+  f.along_tow_axis =
+      std::fabs(f.t.dot(axis.normalized())) >= std::cos(parallel_angle_deg * M_PI / 180.0);
+  const auto [g1, g2] = cross_section_axes(axis);
+  // e1 follows g1 projected off the fibre; if the fibre runs along g1, g2 takes its place.
+  Eigen::Vector3d e1 = g1 - g1.dot(f.t) * f.t;
+  if (e1.norm() < 0.5) e1 = g2 - g2.dot(f.t) * f.t;
+  f.e1 = e1.normalized();
+  f.e2 = f.t.cross(f.e1);
+  return f;
+}
+
+}  // namespace fibrecheck

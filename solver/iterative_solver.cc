@@ -1,0 +1,509 @@
+#include "iterative_solver.h"
+
+#include <Eigen/Core>
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <map>
+#include <sstream>
+#include <unordered_map>
+
+#include "compliance_operator.h"
+#include "contact_detection.h"
+#include "convergence.h"
+#include "fibre.h"
+#include "friction.h"
+#include "superposition.h"
+
+namespace fibrecheck {
+
+SolverOptions SolverOptions::from_scene(const Scene& scene) {
+  SolverOptions o;
+  o.rule = scene.solver.rule;
+  o.c = scene.solver.c;
+  o.overlap_tolerance = scene.overlap_tolerance();
+  o.energy_tolerance = scene.solver.energy_tolerance;
+  o.energy_window = scene.solver.energy_window;
+  o.max_iterations = scene.solver.max_iterations;
+  return o;
+}
+
+bool SolverOptions::is_valid(std::string* error) const {
+  auto fail = [&](const std::string& why) {
+    if (error) *error = why;
+    return false;
+  };
+  if (rule == UpdateRule::seed && !c) return fail("rule seed needs the step c");
+  if (c && !(*c > 0.0 && std::isfinite(*c))) return fail("c must be positive and finite");
+  if (!(overlap_tolerance > 0.0)) return fail("overlap tolerance must be positive");
+  if (energy_tolerance < 0.0) return fail("energy tolerance must not be negative");
+  if (energy_window < 1) return fail("energy window must be at least 1");
+  if (max_iterations < 1) return fail("max iterations must be at least 1");
+  if (!(margin_factor > 0.0)) return fail("margin factor must be positive");
+  return true;
+}
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+/// The iteration of §4.3.2 on one scene: holds the fibres, the contacts and the forces, and runs
+/// detect → superpose → measure → update until a criterion of §4.3.6 stops it.
+class IterativeSolver {
+ public:
+  IterativeSolver(const Scene& scene, const SolverOptions& options)
+      : scene_(scene),
+        options_(options),
+        fibres_(make_fibres(scene)),
+        superposition_(fibres_, scene),
+        margin_(options.margin_factor * smallest_radius()),
+        detector_(fibres_, scene, margin_),
+        divergence_(options.overlap_tolerance),
+        energy_window_(options.energy_window, options.energy_tolerance) {}
+
+  Result run();
+
+ private:
+  static std::vector<Fibre> make_fibres(const Scene& scene) {
+    std::vector<Fibre> fibres;
+    for (const FibreSpec& spec : scene.fibres)
+      fibres.push_back(make_fibre(spec, scene.contact.axis, scene.contact.parallel_angle_deg));
+    return fibres;
+  }
+  double smallest_radius() const {
+    double r = INFINITY;
+    for (const Fibre& f : fibres_) r = std::min(r, f.radius);
+    return r;
+  }
+
+  void detect_contacts();
+  void compute_grid(bool only_point_fibres);
+  bool moved_beyond_margin();
+  void estimate_step();
+  std::optional<std::string> find_unresolvable() const;
+  void evaluate();
+  void update_forces();
+  void gather_forces();
+  Result assemble(Clock::time_point start);
+  bool record_history(long iteration) const;
+
+  const Scene& scene_;
+  SolverOptions options_;
+  std::vector<Fibre> fibres_;
+  Superposition superposition_;
+  double margin_;
+  ContactDetector detector_;
+  DivergenceMonitor divergence_;
+  EnergyWindow energy_window_;
+
+  std::vector<Contact> contacts_;
+  std::vector<Eigen::Vector3d> force_on_a_, u_a_, u_b_;
+  std::vector<std::vector<Eigen::Vector3d>> grid_u_, grid_u_at_detection_;
+  std::vector<char> has_point_contact_;
+  Eigen::VectorXd previous_forces_;  ///< accelerated rule: the previous iterate P_{k−1}
+  Eigen::VectorXd iterate_;          ///< accelerated rule: the current iterate P_k
+  double momentum_t_ = 1.0;
+  double lambda_max_ = 0.0;
+  double step_ = 0.0;
+  double exact_energy_ = 0.0;
+  Residuals residuals_;
+  int rebuilds_ = 0;
+  int held_normals_ = 0;
+  std::vector<std::string> warnings_;
+  std::vector<HistoryEntry> history_;
+};
+
+void IterativeSolver::compute_grid(bool only_point_fibres) {
+  const std::vector<double>& s = detector_.grid();
+  grid_u_.resize(fibres_.size());
+  const int n = static_cast<int>(fibres_.size());
+#pragma omp parallel for schedule(dynamic, 16) if (n > 64)
+  for (int f = 0; f < n; ++f) {
+    if (only_point_fibres && !has_point_contact_[f]) continue;
+    superposition_.fibre_field(f, contacts_, force_on_a_, true, s, grid_u_[f]);
+  }
+}
+
+void IterativeSolver::gather_forces() {
+  force_on_a_.resize(contacts_.size());
+  for (std::size_t k = 0; k < contacts_.size(); ++k) force_on_a_[k] = contacts_[k].force_on_a();
+}
+
+void IterativeSolver::detect_contacts() {
+  // Deformed shape under the current forces, then a fresh candidate list; forces carry over.
+  gather_forces();
+  compute_grid(false);
+  std::unordered_map<std::uint64_t, std::size_t> previous;
+  for (std::size_t k = 0; k < contacts_.size(); ++k) previous[contacts_[k].key()] = k;
+  std::vector<Contact> found = detector_.detect(grid_u_);
+  for (Contact& c : found) {
+    auto it = previous.find(c.key());
+    if (it == previous.end()) continue;
+    const Contact& old = contacts_[it->second];
+    c.force = old.force;
+    c.friction = old.friction;
+    if (old.normal_held) c.normal = old.normal;
+    if (c.kind == ContactKind::point) c.s_a = old.s_a, c.s_b = old.s_b;
+    previous.erase(it);
+  }
+  // A contact that carries force stays a candidate even if it has opened beyond the margin:
+  // dropping it would release its force at once and the fibres would spring back (a cycle).
+  for (const auto& [key, k] : previous)
+    if (contacts_[k].force > 0.0) found.push_back(contacts_[k]);
+  contacts_ = std::move(found);
+  superposition_.attach(contacts_);
+  has_point_contact_.assign(fibres_.size(), 0);
+  for (const Contact& c : contacts_)
+    if (c.kind == ContactKind::point) has_point_contact_[c.a] = has_point_contact_[c.b] = 1;
+  grid_u_at_detection_ = grid_u_;
+  gather_forces();
+  iterate_.resize(static_cast<Eigen::Index>(contacts_.size()));
+  for (std::size_t k = 0; k < contacts_.size(); ++k) iterate_[k] = contacts_[k].force;
+  previous_forces_ = iterate_;
+  momentum_t_ = 1.0;
+  estimate_step();
+}
+
+bool IterativeSolver::moved_beyond_margin() {
+  gather_forces();
+  compute_grid(false);
+  double largest = 0.0;
+  for (std::size_t f = 0; f < fibres_.size(); ++f)
+    for (std::size_t j = 0; j < grid_u_[f].size(); ++j)
+      largest = std::max(largest, (grid_u_[f][j] - grid_u_at_detection_[f][j]).norm());
+  return largest > 0.5 * margin_;
+}
+
+void IterativeSolver::estimate_step() {
+  lambda_max_ = ComplianceOperator(superposition_, contacts_).largest_eigenvalue();
+  if (options_.rule == UpdateRule::seed)
+    step_ = *options_.c;
+  else
+    step_ = lambda_max_ > 0.0 ? 1.0 / lambda_max_ : 0.0;
+}
+
+std::optional<std::string> IterativeSolver::find_unresolvable() const {
+  // An overlap at a point neither fibre can move (a pinned support of both, or a normal along both
+  // axes) can never be removed: say so at once instead of iterating.
+  double scale = 0.0;
+  for (const Fibre& f : fibres_) scale = std::max(scale, std::pow(f.length, 3) / (48.0 * f.EI));
+  for (const Contact& c : contacts_)
+    if (c.overlap > options_.overlap_tolerance && c.compliance <= 1e-12 * scale) {
+      std::ostringstream out;
+      out.precision(3);
+      out << "overlap " << c.overlap << " mm between " << detector_.describe(c)
+          << " where neither can move (pinned supports): it cannot be resolved";
+      return out.str();
+    }
+  return std::nullopt;
+}
+
+void IterativeSolver::evaluate() {
+  gather_forces();
+  superposition_.contact_displacements(contacts_, force_on_a_, true, u_a_, u_b_, &exact_energy_);
+  if (detector_.needs_polylines()) compute_grid(true);
+  held_normals_ = detector_.measure(contacts_, u_a_, u_b_, grid_u_);
+  residuals_ = measure_residuals(contacts_);
+}
+
+void IterativeSolver::update_forces() {
+  const Eigen::Index n = static_cast<Eigen::Index>(contacts_.size());
+  const double mu = scene_.contact.friction;
+  Eigen::VectorXd next(n);
+  // §4.3.2: P' = max(0, P + c·d); under rule seed slices take c/n (Eq. 4.28).
+  for (Eigen::Index k = 0; k < n; ++k) {
+    const Contact& c = contacts_[k];
+    const double step = options_.rule == UpdateRule::seed ? step_ * c.step_scale : step_;
+    next[k] = std::max(0.0, c.force + step * c.overlap);
+  }
+  if (options_.rule == UpdateRule::accelerated) {
+    // Nesterov momentum on the same projected step, restarted when the step points uphill
+    // (gradient restart: −d(y)·(P_{k+1} − P_k) > 0).
+    double uphill = 0.0;
+    for (Eigen::Index k = 0; k < n; ++k) uphill += -contacts_[k].overlap * (next[k] - iterate_[k]);
+    if (uphill > 0.0) momentum_t_ = 1.0;
+    const double t_next = 0.5 * (1.0 + std::sqrt(1.0 + 4.0 * momentum_t_ * momentum_t_));
+    const double beta = (momentum_t_ - 1.0) / t_next;
+    momentum_t_ = uphill > 0.0 ? 1.0 : t_next;
+    previous_forces_ = iterate_;
+    iterate_ = next;
+    next = (iterate_ + beta * (iterate_ - previous_forces_)).cwiseMax(0.0);
+  }
+  for (Eigen::Index k = 0; k < n; ++k) {
+    Contact& c = contacts_[k];
+    if (mu > 0.0)  // §4.3.4: keep last iteration's resultant, Coulomb-capped
+      c.friction = coulomb_capped_friction(force_on_a_[k], c.normal, next[k], mu);
+    c.force = next[k];
+  }
+  if (detector_.needs_polylines()) superposition_.resort(contacts_);
+}
+
+bool IterativeSolver::record_history(long iteration) const {
+  if (iteration <= 100) return true;
+  // About 40 entries per decade beyond the first hundred.
+  const double decade = std::log10(static_cast<double>(iteration));
+  const double previous = std::log10(static_cast<double>(iteration - 1));
+  return std::floor(decade * 40.0) != std::floor(previous * 40.0);
+}
+
+Result IterativeSolver::run() {
+  const auto start = Clock::now();
+  Result result;
+  result.scene = scene_.name;
+  result.solver = "iterative";
+  result.rule = to_string(options_.rule);
+
+  detect_contacts();
+  for (const Contact& c : contacts_) {
+    const double r = std::min(fibres_[c.a].radius,
+                              c.kind == ContactKind::wall ? INFINITY : fibres_[c.b].radius);
+    if (c.overlap > r) {
+      warnings_.push_back("initial overlap above the radius between " + detector_.describe(c) +
+                          ": the contact side is ambiguous");
+      break;
+    }
+  }
+  std::string status = "max_iterations", criterion = "max_iterations", message;
+  if (auto why = find_unresolvable()) {
+    evaluate();
+    result.status = "unresolvable";
+    result.criterion = "unresolvable";
+    result.message = *why;
+    result.iterations = 0;
+    Result assembled = assemble(start);
+    assembled.status = "unresolvable";
+    assembled.criterion = "unresolvable";
+    assembled.message = *why;
+    return assembled;
+  }
+
+  const bool energy_each_iteration = options_.energy_tolerance > 0.0;
+  Eigen::VectorXd best_forces;
+  double best_residual = INFINITY;
+  auto last_progress = Clock::now();
+  long iteration = 0;
+  for (iteration = 1; iteration <= options_.max_iterations; ++iteration) {
+    evaluate();
+    const double residual = residuals_.total();
+    double energy = NAN;
+    if (energy_each_iteration || record_history(iteration))
+      energy = superposition_.trapezium_energy(contacts_, force_on_a_, scene_.contact.slices);
+    if (record_history(iteration))
+      history_.push_back({iteration, residuals_.max_overlap, energy});
+
+    if (!std::isfinite(residual) || !std::isfinite(exact_energy_)) {
+      status = "diverged";
+      criterion = "non_finite";
+      message = "non-finite forces or displacements";
+      break;
+    }
+    if (residual < best_residual) {
+      best_residual = residual;
+      best_forces.resize(static_cast<Eigen::Index>(contacts_.size()));
+      for (std::size_t k = 0; k < contacts_.size(); ++k) best_forces[k] = contacts_[k].force;
+    }
+    if (residuals_.overlap < options_.overlap_tolerance &&
+        residuals_.gap_force < options_.overlap_tolerance) {
+      // Before stopping, make sure no contact outside the candidate list appeared.
+      if (moved_beyond_margin()) {
+        detect_contacts();
+        ++rebuilds_;
+        continue;
+      }
+      status = "converged";
+      criterion = "contact";
+      break;
+    }
+    if (energy_each_iteration && energy_window_.push(energy)) {
+      status = "converged";
+      criterion = "energy";
+      break;
+    }
+    const auto verdict = divergence_.observe(iteration, residual);
+    if (verdict != DivergenceMonitor::Verdict::fine) {
+      std::ostringstream out;
+      out.precision(3);
+      out << (verdict == DivergenceMonitor::Verdict::growth ? "residual grew without bound"
+                                                            : "no progress: the update oscillates")
+          << " (c = " << step_ << " N/mm, estimate of 2/lambda_max(W) = " << 2.0 / lambda_max_
+          << " N/mm)";
+      status = "diverged";
+      criterion = verdict == DivergenceMonitor::Verdict::growth ? "growth" : "oscillation";
+      message = out.str();
+      break;
+    }
+    if (options_.progress && seconds_since(last_progress) >= options_.progress_interval_s) {
+      last_progress = Clock::now();
+      options_.progress({iteration, options_.max_iterations, residuals_.overlap,
+                         residuals_.gap_force, options_.overlap_tolerance, contacts_.size(),
+                         seconds_since(start)});
+    }
+    update_forces();
+    if (iteration % 10 == 0 && moved_beyond_margin()) {
+      if (getenv("FC_DEBUG")) fprintf(stderr, "rebuild at %ld: %zu contacts, residual %g, held %d\n", iteration, contacts_.size(), residual, held_normals_);
+      detect_contacts();
+      if (getenv("FC_DEBUG")) fprintf(stderr, "  now %zu contacts, lambda %g\n", contacts_.size(), lambda_max_);
+      divergence_.reset();
+      ++rebuilds_;
+      if (auto why = find_unresolvable()) {
+        evaluate();
+        status = "unresolvable";
+        criterion = "unresolvable";
+        message = *why;
+        break;
+      }
+    }
+  }
+  if (status == "diverged" && best_forces.size() == static_cast<Eigen::Index>(contacts_.size())) {
+    // Report the best state seen, never a non-finite one.
+    for (std::size_t k = 0; k < contacts_.size(); ++k) {
+      contacts_[k].force = best_forces[k];
+      contacts_[k].friction.setZero();
+    }
+    evaluate();
+  }
+  if (status == "max_iterations") {
+    iteration = options_.max_iterations;
+    std::ostringstream out;
+    out.precision(3);
+    out << "stopped after " << iteration << " iterations with overlap residual "
+        << residuals_.overlap << " mm and gap-force residual " << residuals_.gap_force
+        << " mm (tolerance " << options_.overlap_tolerance << " mm)";
+    message = out.str();
+  }
+  if (getenv("FC_DEBUG")) {
+    std::vector<std::size_t> idx(contacts_.size());
+    for (std::size_t k = 0; k < idx.size(); ++k) idx[k] = k;
+    std::sort(idx.begin(), idx.end(), [&](std::size_t x, std::size_t y) {
+      auto bad = [&](const Contact& c) { return c.force > 0 ? std::fabs(c.overlap) : c.overlap; };
+      return bad(contacts_[x]) > bad(contacts_[y]); });
+    for (int q = 0; q < 12 && q < (int)idx.size(); ++q) { const Contact& c = contacts_[idx[q]];
+      fprintf(stderr, "%s: overlap %g force %g W %g n=(%g %g %g) held %d\n", detector_.describe(c).c_str(), c.overlap, c.force, c.compliance, c.normal[0], c.normal[1], c.normal[2], c.normal_held); }
+  }
+  result = assemble(start);
+  result.status = status;
+  result.criterion = criterion;
+  result.message = message;
+  result.iterations = std::min(iteration, options_.max_iterations);
+  return result;
+}
+
+Result IterativeSolver::assemble(Clock::time_point start) {
+  Result r;
+  r.scene = scene_.name;
+  r.solver = "iterative";
+  r.rule = to_string(options_.rule);
+  gather_forces();
+  r.strain_energy = superposition_.trapezium_energy(contacts_, force_on_a_, scene_.contact.slices);
+  superposition_.contact_displacements(contacts_, force_on_a_, true, u_a_, u_b_,
+                                       &r.strain_energy_exact);
+  r.max_overlap = residuals_.max_overlap;
+  r.gap_force_residual = residuals_.gap_force;
+  r.c = step_;
+  r.c_stable_limit = lambda_max_ > 0.0 ? 2.0 / lambda_max_ : 0.0;
+  r.axial_load_dropped = superposition_.axial_load_dropped(contacts_, force_on_a_);
+  r.warnings = warnings_;
+  if (rebuilds_ > 0 || held_normals_ > 0) {
+    std::ostringstream out;
+    out << "candidate contacts rebuilt " << rebuilds_ << " times; " << held_normals_
+        << " normals held at the end (centres nearly coincident)";
+    if (held_normals_ > 0) r.warnings.push_back(out.str());
+  }
+
+  r.stages.push_back("superposition");
+  if (detector_.broad_phase()) r.stages.push_back("broad_phase");
+  if (detector_.point_search()) r.stages.push_back("point_contacts");
+  if (detector_.slicing()) r.stages.push_back("slices");
+  if (detector_.walls()) r.stages.push_back("walls");
+  if (scene_.contact.friction > 0.0) r.stages.push_back("friction");
+  if (options_.energy_tolerance > 0.0) r.stages.push_back("energy_criterion");
+  r.stages.push_back(std::string("update_") + to_string(options_.rule));
+
+  const int samples = scene_.output.samples;
+  std::vector<double> s(samples);
+  for (int j = 0; j < samples; ++j) s[j] = static_cast<double>(j) / (samples - 1);
+  for (std::size_t f = 0; f < fibres_.size(); ++f) {
+    FibreResult fr;
+    fr.id = fibres_[f].id;
+    superposition_.fibre_field(static_cast<int>(f), contacts_, force_on_a_, true, s,
+                               fr.displacement);
+    r.fibres.push_back(std::move(fr));
+  }
+
+  // Contacts grouped by pair, in order of first appearance; only points that carry force.
+  std::map<std::tuple<int, int, int>, std::size_t> group;
+  for (std::size_t k = 0; k < contacts_.size(); ++k) {
+    const Contact& c = contacts_[k];
+    if (!(c.force > 0.0)) continue;
+    const auto key = std::make_tuple(static_cast<int>(c.kind), c.a, c.b);
+    auto it = group.find(key);
+    if (it == group.end()) {
+      ContactResult cr;
+      cr.fibres = {fibres_[c.a].id, c.kind == ContactKind::wall ? detector_.wall_specs()[c.b].id
+                                                                  : fibres_[c.b].id};
+      cr.kind = to_string(c.kind);
+      it = group.emplace(key, r.contacts.size()).first;
+      r.contacts.push_back(cr);
+    }
+    ContactPoint p;
+    p.position = c.s_a;
+    const Eigen::Vector3d ac = fibres_[c.a].point(c.s_a) + u_a_[k];
+    p.point = c.kind == ContactKind::wall ? Eigen::Vector3d(ac - fibres_[c.a].radius * c.normal)
+                                          : Eigen::Vector3d(0.5 * (ac + fibres_[c.b].point(c.s_b) + u_b_[k]));
+    p.force = force_on_a_[k];
+    r.contacts[it->second].points.push_back(p);
+  }
+  for (ContactResult& cr : r.contacts) {
+    Eigen::Vector3d total = Eigen::Vector3d::Zero();
+    for (const ContactPoint& p : cr.points) total += p.force;
+    cr.total_force = total.norm();
+  }
+
+  // Walls: total normal reaction and pressure over the tow's footprint on the wall.
+  for (std::size_t w = 0; w < detector_.wall_specs().size(); ++w) {
+    const WallSpec& spec = detector_.wall_specs()[w];
+    WallResult wr;
+    wr.id = spec.id;
+    for (const Contact& c : contacts_)
+      if (c.kind == ContactKind::wall && c.b == static_cast<int>(w)) wr.force += c.force;
+    const auto [p1, p2] = cross_section_axes(spec.normal);
+    Eigen::Vector2d lo(INFINITY, INFINITY), hi(-INFINITY, -INFINITY);
+    for (const Fibre& f : fibres_)
+      for (const Eigen::Vector3d& x : {f.start, f.end}) {
+        const Eigen::Vector2d q(x.dot(p1), x.dot(p2));
+        lo = lo.cwiseMin((q.array() - f.radius).matrix());
+        hi = hi.cwiseMax((q.array() + f.radius).matrix());
+      }
+    wr.area = (hi - lo).prod();
+    wr.pressure = wr.area > 0.0 ? wr.force / wr.area : 0.0;
+    r.walls.push_back(wr);
+  }
+  r.history = history_;
+  r.wall_time_s = seconds_since(start);
+  return r;
+}
+
+}  // namespace
+
+Result solve_iteratively(const Scene& scene, const SolverOptions& options) {
+  IterativeSolver solver(scene, options);
+  return solver.run();
+}
+
+std::string brief_report(const Result& r) {
+  std::ostringstream out;
+  out.precision(4);
+  out << "status " << r.status << " (criterion " << r.criterion << "), " << r.iterations
+      << " iterations, " << r.wall_time_s << " s\n";
+  out << "strain energy " << r.strain_energy << " N*mm (trapezium), " << r.strain_energy_exact
+      << " N*mm (exact 1/2 sum P*v); max overlap " << r.max_overlap << " mm, gap-force residual "
+      << r.gap_force_residual << " mm; " << r.contacts.size() << " contact pairs";
+  if (!r.message.empty()) out << "\n" << r.message;
+  return out.str();
+}
+
+}  // namespace fibrecheck

@@ -1,0 +1,75 @@
+#pragma once
+
+#include <Eigen/Core>
+#include <vector>
+
+#include "contact.h"
+#include "fibre.h"
+#include "scene.h"
+
+namespace fibrecheck {
+
+/// The beam model of all fibres at once (seed §4.3.1): each fibre's deflection is the superposition
+/// of its external loads and its contact forces, each force resolved into the fibre's two bending
+/// planes (e1, e2) and its axial part dropped. Evaluation at the k load points of a fibre, or at n
+/// sorted stations, costs O(k + n) through the running sums of beam.h.
+class Superposition {
+ public:
+  Superposition(const std::vector<Fibre>& fibres, const Scene& scene);
+
+  /// Registers the contacts' load points on their fibres (call when the contact list changes).
+  void attach(const std::vector<Contact>& contacts);
+  /// Keeps each fibre's load points sorted after point contacts moved along the fibres.
+  void resort(const std::vector<Contact>& contacts);
+
+  /// Displacements (mm) of fibre A's and fibre B's centreline at every contact, under the contact
+  /// forces `force_on_a` (what fibre A receives; B receives the opposite) and, if `external`, the
+  /// scene's loads. Optionally returns the exact strain energy ½ΣP·v (N·mm).
+  void contact_displacements(const std::vector<Contact>& contacts,
+                             const std::vector<Eigen::Vector3d>& force_on_a, bool external,
+                             std::vector<Eigen::Vector3d>& u_a, std::vector<Eigen::Vector3d>& u_b,
+                             double* exact_energy = nullptr) const;
+
+  /// Displacement (mm) and optionally bending moments (N·mm, both planes) of one fibre at sorted
+  /// fractions `s`, under the same loads.
+  void fibre_field(int fibre, const std::vector<Contact>& contacts,
+                   const std::vector<Eigen::Vector3d>& force_on_a, bool external,
+                   const std::vector<double>& s, std::vector<Eigen::Vector3d>& u,
+                   std::vector<Eigen::Vector2d>* moment = nullptr) const;
+
+  /// Strain energy Σ∫M²/(2EI)dx by the trapezium rule on `intervals` equal intervals per fibre
+  /// (Eqs. 4.34–4.35).
+  double trapezium_energy(const std::vector<Contact>& contacts,
+                          const std::vector<Eigen::Vector3d>& force_on_a, int intervals) const;
+
+  /// Sum of the magnitudes of the axial parts the beam model drops, N.
+  double axial_load_dropped(const std::vector<Contact>& contacts,
+                            const std::vector<Eigen::Vector3d>& force_on_a) const;
+
+  /// Fibres carrying at least one contact or external point load, in order.
+  const std::vector<Fibre>& fibres() const { return fibres_; }
+
+ private:
+  /// A load point on a fibre: a contact side (contact ≥ 0, sign +1 for A, −1 for B) or an external
+  /// point load (contact = −1 − index).
+  struct Slot {
+    double a;  ///< distance from start, mm
+    int contact;
+    int sign;
+  };
+  struct ExternalPointLoad {
+    double a;
+    Eigen::Vector2d p;  ///< components along e1, e2, N
+  };
+
+  Eigen::Vector2d slot_force(int fibre, const Slot& slot, const std::vector<Contact>& contacts,
+                             const std::vector<Eigen::Vector3d>& force_on_a) const;
+
+  std::vector<Fibre> fibres_;
+  std::vector<std::vector<ExternalPointLoad>> point_loads_;  ///< per fibre
+  std::vector<Eigen::Vector2d> distributed_;                 ///< per fibre, q along e1, e2 (N/mm)
+  std::vector<double> external_axial_;                       ///< per fibre, dropped axial N
+  std::vector<std::vector<Slot>> slots_;                     ///< per fibre, sorted by a
+};
+
+}  // namespace fibrecheck
