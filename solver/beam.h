@@ -20,10 +20,14 @@ struct BeamSums {
   double Sa = 0, Sa3 = 0, Sb = 0, Sb3 = 0;
 };
 
+/// 6EIL times the deflection at x: the bracket of the formula above.
+inline double scaled_deflection_from_sums(const BeamSums& s, double x, double L) {
+  return x * (L * L * s.Sb - s.Sb3 - x * x * s.Sb) + (L - x) * (s.Sa * (2 * L * x - x * x) - s.Sa3);
+}
+
 /// Deflection at x (mm, in the direction of positive P) from the running sums.
 inline double deflection_from_sums(const BeamSums& s, double x, double L, double EI) {
-  return (x * (L * L * s.Sb - s.Sb3 - x * x * s.Sb) + (L - x) * (s.Sa * (2 * L * x - x * x) - s.Sa3)) /
-         (6.0 * EI * L);
+  return scaled_deflection_from_sums(s, x, L) / (6.0 * EI * L);
 }
 
 /// Bending moment at x (N·mm) from the running sums.

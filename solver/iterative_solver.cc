@@ -134,37 +134,55 @@ void IterativeSolver::gather_forces() {
 }
 
 void IterativeSolver::detect_contacts() {
-  // Deformed shape under the current forces, then a fresh candidate list; forces carry over.
+  // Deformed shape under the current forces, then a fresh candidate list. Contacts found again keep
+  // their state (force, friction, the normal they push along, the momentum of the accelerated
+  // rule); W and its step are estimated again only when the list changed.
   gather_forces();
   compute_grid(false);
   std::unordered_map<std::uint64_t, std::size_t> previous;
   for (std::size_t k = 0; k < contacts_.size(); ++k) previous[contacts_[k].key()] = k;
   std::vector<Contact> found = detector_.detect(grid_u_);
-  for (Contact& c : found) {
+  std::vector<long> origin(found.size(), -1);
+  for (std::size_t i = 0; i < found.size(); ++i) {
+    Contact& c = found[i];
     auto it = previous.find(c.key());
     if (it == previous.end()) continue;
     const Contact& old = contacts_[it->second];
     c.force = old.force;
     c.friction = old.friction;
-    if (old.normal_held) c.normal = old.normal;
+    if (old.force > 0.0 || old.normal_held) c.normal = old.normal, c.normal_held = old.normal_held;
     if (c.kind == ContactKind::point) c.s_a = old.s_a, c.s_b = old.s_b;
+    origin[i] = static_cast<long>(it->second);
     previous.erase(it);
   }
   // A contact that carries force stays a candidate even if it has opened beyond the margin:
   // dropping it would release its force at once and the fibres would spring back (a cycle).
   for (const auto& [key, k] : previous)
-    if (contacts_[k].force > 0.0) found.push_back(contacts_[k]);
+    if (contacts_[k].force > 0.0) {
+      found.push_back(contacts_[k]);
+      origin.push_back(static_cast<long>(k));
+    }
+  bool unchanged = !contacts_.empty() && found.size() == contacts_.size();
+  for (std::size_t i = 0; unchanged && i < origin.size(); ++i)
+    unchanged = origin[i] == static_cast<long>(i);
+  const bool had_momentum = iterate_.size() == static_cast<Eigen::Index>(contacts_.size());
+  Eigen::VectorXd iterate(static_cast<Eigen::Index>(found.size()));
+  Eigen::VectorXd previous_iterate(iterate.size());
+  for (std::size_t i = 0; i < found.size(); ++i) {
+    const bool known = had_momentum && origin[i] >= 0;
+    iterate[i] = known ? iterate_[origin[i]] : found[i].force;
+    previous_iterate[i] = known ? previous_forces_[origin[i]] : found[i].force;
+  }
   contacts_ = std::move(found);
+  iterate_ = std::move(iterate);
+  previous_forces_ = std::move(previous_iterate);
+  grid_u_at_detection_ = grid_u_;
+  if (unchanged) return;
   superposition_.attach(contacts_);
   has_point_contact_.assign(fibres_.size(), 0);
   for (const Contact& c : contacts_)
     if (c.kind == ContactKind::point) has_point_contact_[c.a] = has_point_contact_[c.b] = 1;
-  grid_u_at_detection_ = grid_u_;
   gather_forces();
-  iterate_.resize(static_cast<Eigen::Index>(contacts_.size()));
-  for (std::size_t k = 0; k < contacts_.size(); ++k) iterate_[k] = contacts_[k].force;
-  previous_forces_ = iterate_;
-  momentum_t_ = 1.0;
   estimate_step();
 }
 
@@ -344,9 +362,7 @@ Result IterativeSolver::run() {
     }
     update_forces();
     if (iteration % 10 == 0 && moved_beyond_margin()) {
-      if (getenv("FC_DEBUG")) fprintf(stderr, "rebuild at %ld: %zu contacts, residual %g, held %d\n", iteration, contacts_.size(), residual, held_normals_);
       detect_contacts();
-      if (getenv("FC_DEBUG")) fprintf(stderr, "  now %zu contacts, lambda %g\n", contacts_.size(), lambda_max_);
       divergence_.reset();
       ++rebuilds_;
       if (auto why = find_unresolvable()) {
@@ -374,15 +390,6 @@ Result IterativeSolver::run() {
         << residuals_.overlap << " mm and gap-force residual " << residuals_.gap_force
         << " mm (tolerance " << options_.overlap_tolerance << " mm)";
     message = out.str();
-  }
-  if (getenv("FC_DEBUG")) {
-    std::vector<std::size_t> idx(contacts_.size());
-    for (std::size_t k = 0; k < idx.size(); ++k) idx[k] = k;
-    std::sort(idx.begin(), idx.end(), [&](std::size_t x, std::size_t y) {
-      auto bad = [&](const Contact& c) { return c.force > 0 ? std::fabs(c.overlap) : c.overlap; };
-      return bad(contacts_[x]) > bad(contacts_[y]); });
-    for (int q = 0; q < 12 && q < (int)idx.size(); ++q) { const Contact& c = contacts_[idx[q]];
-      fprintf(stderr, "%s: overlap %g force %g W %g n=(%g %g %g) held %d\n", detector_.describe(c).c_str(), c.overlap, c.force, c.compliance, c.normal[0], c.normal[1], c.normal[2], c.normal_held); }
   }
   result = assemble(start);
   result.status = status;

@@ -30,7 +30,7 @@ struct SolverOptions {
   int energy_window = 10;        ///< n_i
   long max_iterations = 100000;
   /// Candidate contacts are found this fraction of the smallest radius before they touch.
-  double margin_factor = 0.25;
+  double margin_factor = 0.1;
   /// Called about once a second with the state of the iteration.
   std::function<void(const IterationProgress&)> progress;
   double progress_interval_s = 1.0;

@@ -127,16 +127,26 @@ void Superposition::contact_displacements(const std::vector<Contact>& contacts,
     }
     double fibre_energy = 0.0;
     Eigen::Vector2d unit_q_work = Eigen::Vector2d::Zero();  // Σ p·v_{q=1}(a) (Maxwell–Betti)
+    const double inverse = 1.0 / (6.0 * f.EI * L);
+    const bool distributed = !q.isZero();
     std::size_t moved = 0;
+    Eigen::Vector2d v = Eigen::Vector2d::Zero();
+    double vq = 0.0;
     for (std::size_t j = 0; j < list.size(); ++j) {
       const double x = list[j].a;
-      for (; moved < list.size() && list[moved].a < x; ++moved)
-        sums.move_left(p[moved], list[moved].a, L - list[moved].a);
-      const double vq = uniform_load_deflection(1.0, x, L, f.EI);
-      const Eigen::Vector2d v(deflection_from_sums(sums.s[0], x, L, f.EI) + q[0] * vq,
-                              deflection_from_sums(sums.s[1], x, L, f.EI) + q[1] * vq);
-      fibre_energy += 0.5 * p[j].dot(v);
-      unit_q_work += p[j] * vq;
+      // Slices put several contacts of a fibre at one station: evaluate each station once.
+      if (j == 0 || x != list[j - 1].a) {
+        for (; moved < list.size() && list[moved].a < x; ++moved)
+          sums.move_left(p[moved], list[moved].a, L - list[moved].a);
+        v = {scaled_deflection_from_sums(sums.s[0], x, L) * inverse,
+             scaled_deflection_from_sums(sums.s[1], x, L) * inverse};
+        if (distributed) {
+          vq = uniform_load_deflection(1.0, x, L, f.EI);
+          v += q * vq;
+        }
+      }
+      if (exact_energy) fibre_energy += 0.5 * p[j].dot(v);
+      if (distributed) unit_q_work += p[j] * vq;
       if (list[j].contact >= 0) {
         const Eigen::Vector3d u = v[0] * f.e1 + v[1] * f.e2;
         (list[j].sign > 0 ? u_a : u_b)[list[j].contact] = u;
