@@ -242,8 +242,10 @@ int ContactDetector::measure(std::vector<Contact>& contacts, const std::vector<E
     if (c.kind == ContactKind::line) difference -= difference.dot(axis_) * axis_;
     set_normal_and_overlap(c, difference, fibres_[c.a].radius + fibres_[c.b].radius, false);
     held += c.normal_held ? 1 : 0;
-    if (c.kind == ContactKind::point) {
-      // Follow the closest points for the next evaluation: search a few segments around them.
+    if (c.kind == ContactKind::point && c.force <= 0.0) {
+      // Until it pushes, a point contact follows the closest points of the deformed centrelines
+      // (search a few segments around the last ones); once it pushes, it stays where it touched,
+      // like its normal, so the contact problem stays linear (small-deflection theory).
       const int ia = std::min(static_cast<int>(c.s_a * m), m - 1);
       const int ib = std::min(static_cast<int>(c.s_b * m), m - 1);
       Contact moved = c;

@@ -30,9 +30,10 @@ class ContactDetector {
   std::vector<Contact> detect(const std::vector<std::vector<Eigen::Vector3d>>& grid_u) const;
 
   /// Measures every contact again from the exact displacements of its two sides (`u_a`, `u_b`):
-  /// overlap d (Eq. 4.14) and normal. Point contacts then look for their closest points again on
-  /// the deformed polylines `grid_u` (only fibres with point contacts need them) and move there for
-  /// the next evaluation. Returns how many normals were held because the centres nearly coincided.
+  /// overlap d (Eq. 4.14) and normal. Point contacts that carry no force then look for their
+  /// closest points again on the deformed polylines `grid_u` (only fibres with point contacts need
+  /// them) and move there for the next evaluation; a contact that pushes keeps its place and its
+  /// normal. Returns how many normals were held because the centres nearly coincided.
   int measure(std::vector<Contact>& contacts, const std::vector<Eigen::Vector3d>& u_a,
               const std::vector<Eigen::Vector3d>& u_b,
               const std::vector<std::vector<Eigen::Vector3d>>& grid_u) const;
