@@ -327,22 +327,79 @@ void validate_scene(const Scene& scene) {
     throw InputError(file, "solver.max_iterations", "must be at least 1");
 }
 
+namespace {
+
+/// Follows where the parser is (`fibres[1].radius`) so that a syntax error or an overflowing
+/// number can be reported with its field.
+class ParsePath {
+ public:
+  bool on_event(int /*depth*/, json::parse_event_t event, json& parsed) {
+    switch (event) {
+      case json::parse_event_t::object_start:
+      case json::parse_event_t::array_start:
+        count_element();
+        frames_.push_back({event == json::parse_event_t::array_start, -1, ""});
+        break;
+      case json::parse_event_t::object_end:
+      case json::parse_event_t::array_end:
+        if (!frames_.empty()) frames_.pop_back();
+        break;
+      case json::parse_event_t::key:
+        if (!frames_.empty()) frames_.back().key = parsed.get<std::string>();
+        break;
+      case json::parse_event_t::value:
+        count_element();
+        break;
+    }
+    return true;
+  }
+
+  std::string str() const {
+    std::string path;
+    for (const Frame& f : frames_) {
+      if (f.array) {
+        if (f.index >= 0) path += "[" + std::to_string(f.index) + "]";
+      } else if (!f.key.empty()) {
+        path += (path.empty() ? "" : ".") + f.key;
+      }
+    }
+    return path;
+  }
+
+ private:
+  struct Frame {
+    bool array;
+    int index;
+    std::string key;
+  };
+  void count_element() {
+    if (!frames_.empty() && frames_.back().array) ++frames_.back().index;
+  }
+  std::vector<Frame> frames_;
+};
+
+}  // namespace
+
 Scene read_scene(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
-  if (!in) {
+  if (!in || std::filesystem::is_directory(path)) {
     const bool exists = std::filesystem::exists(path);
     throw InputError(path, "", exists ? "cannot be read" : "no such file");
   }
   std::stringstream buffer;
   buffer << in.rdbuf();
   json document;
+  ParsePath where;
   try {
-    document = json::parse(buffer.str());
-  } catch (const json::parse_error& e) {
+    document = json::parse(buffer.str(), [&where](int depth, json::parse_event_t event,
+                                                  json& parsed) {
+      return where.on_event(depth, event, parsed);
+    });
+  } catch (const json::exception& e) {
     std::string reason = e.what();
-    const auto colon = reason.find("parse error");
-    if (colon != std::string::npos) reason = reason.substr(colon);
-    throw InputError(path, "", "malformed JSON (" + reason + ")");
+    const auto bracket = reason.find("] ");
+    if (bracket != std::string::npos) reason = reason.substr(bracket + 2);
+    throw InputError(path, where.str(), "malformed JSON (" + reason + ")");
   }
   return scene_from_json(document, path);
 }

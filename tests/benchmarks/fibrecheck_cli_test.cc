@@ -1,0 +1,151 @@
+// The fibrecheck program as a user runs it: exit codes (0 converged, 2 bad input, 3 not solved),
+// one clear message naming file, field and reason, and no file written for bad input.
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <sys/wait.h>
+
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+struct Outcome {
+  int code;
+  std::string out, err;
+};
+
+std::string slurp(const std::string& path) {
+  std::stringstream s;
+  s << std::ifstream(path).rdbuf();
+  return s.str();
+}
+
+Outcome run(const std::string& arguments) {
+  const std::string dir = ::testing::TempDir();
+  const std::string command = std::string(FIBRECHECK_BINARY) + " " + arguments + " >" + dir +
+                              "cli.out 2>" + dir + "cli.err";
+  const int status = std::system(command.c_str());
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(dir + "cli.out"), slurp(dir + "cli.err")};
+}
+
+std::string scene(const std::string& name) { return std::string(FIBRECHECK_SCENES_DIR) + "/" + name + ".json"; }
+
+class Cli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = ::testing::TempDir() + "cli_" +
+           ::testing::UnitTest::GetInstance()->current_test_info()->name() + "/";
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  std::string write(const std::string& name, const json& doc) {
+    std::ofstream(dir_ + name) << doc.dump();
+    return dir_ + name;
+  }
+  json crossing() { return json::parse(slurp(scene("two_fibres_crossing"))); }
+  std::string dir_;
+};
+
+TEST_F(Cli, SolveWritesResultAndVtkAndExitsZero) {
+  const Outcome r = run("solve " + scene("two_fibres_crossing") + " --out " + dir_ + "r.json --vtk " +
+                    dir_ + "r.vtp");
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("status converged"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("rule auto"), std::string::npos);
+  EXPECT_NE(r.out.find("2/lambda_max(W)"), std::string::npos);
+  EXPECT_EQ(json::parse(slurp(dir_ + "r.json"))["status"], "converged");
+  EXPECT_TRUE(fs::exists(dir_ + "r.vtp"));
+}
+
+TEST_F(Cli, CommandLineOverridesRuleSlicesAndC) {
+  const Outcome r = run("solve " + scene("parallel_fibres") + " --rule seed --c 0.02 --slices 20 --out " +
+                    dir_ + "r.json -q");
+  const json result = json::parse(slurp(dir_ + "r.json"));
+  EXPECT_EQ(result["rule"], "seed");
+  EXPECT_EQ(result["c"], 0.02);
+  EXPECT_EQ(result["contacts"][0]["points"].size(), 20u);
+  EXPECT_TRUE(r.code == 0 || r.code == 3);
+  EXPECT_EQ(r.out, "");  // quiet
+}
+
+TEST_F(Cli, BadInputExitsTwoWithFileFieldReasonAndWritesNothing) {
+  json negative = crossing();
+  negative["fibres"][1]["radius"] = -0.01;
+  json unknown = crossing();
+  unknown["solver"]["overlap_tolerence"] = 1e-9;
+  json missing = crossing();
+  missing["loads"] = json::parse(R"([{"fibre": "Z", "force": [0,0,1]}])");
+  json zero_slices = crossing();
+  zero_slices["contact"]["slices"] = 0;
+  std::ofstream(dir_ + "truncated.json") << crossing().dump().substr(0, 50);
+  const std::pair<std::string, std::string> cases[] = {
+      {write("negative.json", negative), "fibres[1].radius"},
+      {write("unknown.json", unknown), "solver.overlap_tolerence"},
+      {write("missing.json", missing), "loads[0].fibre"},
+      {write("zero_slices.json", zero_slices), "contact.slices"},
+      {dir_ + "truncated.json", "malformed JSON"},
+      {dir_ + "absent.json", "no such file"},
+  };
+  for (const auto& [path, field] : cases) {
+    const Outcome r = run("solve " + path + " --out " + dir_ + "out.json --vtk " + dir_ + "out.vtp");
+    EXPECT_EQ(r.code, 2) << path << ": " << r.err;
+    EXPECT_NE(r.err.find(path), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find(field), std::string::npos) << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;  // one message
+    EXPECT_FALSE(fs::exists(dir_ + "out.json")) << path;
+    EXPECT_FALSE(fs::exists(dir_ + "out.vtp")) << path;
+  }
+  // A bad scene among good ones: nothing is solved or written.
+  const Outcome mixed = run("solve " + scene("two_fibres_crossing") + " " + write("neg.json", negative) +
+                        " --out-dir " + dir_ + "all");
+  EXPECT_EQ(mixed.code, 2);
+  EXPECT_FALSE(fs::exists(dir_ + "all"));
+  EXPECT_EQ(run("solve " + scene("two_fibres_crossing") + " --rule fastest").code, 2);
+  EXPECT_EQ(run("solve " + scene("two_fibres_crossing") + " --slices 0").code, 2);
+  EXPECT_EQ(run("frobnicate").code, 2);
+}
+
+TEST_F(Cli, UnsolvableSceneWritesItsStatusAndExitsThree) {
+  json pinned = crossing();
+  pinned["fibres"][1]["start"] = {0, 0, 0.015};
+  pinned["fibres"][1]["end"] = {0, 1, 0.015};
+  const Outcome r = run("solve " + write("pinned.json", pinned) + " --out " + dir_ + "r.json");
+  EXPECT_EQ(r.code, 3) << r.err;
+  EXPECT_NE(r.err.find("unresolvable"), std::string::npos);
+  EXPECT_NE(r.err.find("A and B"), std::string::npos) << r.err;
+  EXPECT_EQ(json::parse(slurp(dir_ + "r.json"))["status"], "unresolvable");
+  json capped = json::parse(slurp(scene("parallel_fibres")));
+  capped["solver"]["max_iterations"] = 3;
+  const Outcome c = run("solve " + write("capped.json", capped) + " --out " + dir_ + "c.json");
+  EXPECT_EQ(c.code, 3);
+  EXPECT_EQ(json::parse(slurp(dir_ + "c.json"))["status"], "max_iterations");
+}
+
+TEST_F(Cli, HelpScenePrintsTheFormat) {
+  const Outcome r = run("solve --help-scene");
+  EXPECT_EQ(r.code, 0);
+  for (const char* field : {"youngs_modulus", "force_per_length", "overlap_tolerance", "slices"})
+    EXPECT_NE(r.out.find(field), std::string::npos) << field;
+}
+
+TEST_F(Cli, GenerateTowIsDeterministicAndChecksItsOptions) {
+  EXPECT_EQ(run("generate tow --fibres 30 --slices 20 --seed 3 --out " + dir_ + "a.json").code, 0);
+  EXPECT_EQ(run("generate tow --fibres 30 --slices 20 --seed 3 --out " + dir_ + "b.json").code, 0);
+  EXPECT_EQ(slurp(dir_ + "a.json"), slurp(dir_ + "b.json"));
+  const json tow = json::parse(slurp(dir_ + "a.json"));
+  EXPECT_EQ(tow["fibres"].size(), 30u);
+  EXPECT_EQ(tow["contact"]["slices"], 20);
+  const Outcome bad = run("generate tow --fibres 30 --compaction 1.5 --out " + dir_ + "c.json");
+  EXPECT_EQ(bad.code, 2);
+  EXPECT_NE(bad.err.find("--compaction"), std::string::npos);
+  EXPECT_FALSE(fs::exists(dir_ + "c.json"));
+  // The generated scene solves.
+  EXPECT_EQ(run("solve " + dir_ + "a.json --rule accelerated -q --out " + dir_ + "a.result.json").code, 0);
+}
+
+}  // namespace

@@ -1,0 +1,65 @@
+// Results round-trip through JSON and are written atomically.
+#include "result.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "input_error.h"
+#include "iterative_solver.h"
+#include "test_scenes.h"
+
+namespace fibrecheck {
+namespace {
+
+TEST(Result, RoundTripKeepsEveryField) {
+  Scene s = testing::crossing(0.4, 0.5, 1e-3);
+  s.output.samples = 7;
+  const Result r = solve_iteratively(s, SolverOptions::from_scene(s));
+  const std::string path = ::testing::TempDir() + "round_trip.result.json";
+  write_result(path, r);
+  const Result back = read_result(path);
+  EXPECT_EQ(result_to_json(back), result_to_json(r));
+  EXPECT_EQ(back.status, "converged");
+  EXPECT_EQ(back.fibres.size(), 2u);
+  EXPECT_EQ(back.fibres[0].displacement.size(), 7u);
+  EXPECT_EQ(back.contacts.at(0).fibres[0], "A");
+  EXPECT_EQ(back.contacts.at(0).points.at(0).force, r.contacts.at(0).points.at(0).force);
+  // The schema's names (DESIGN §5) are the ones written.
+  const nlohmann::json j = result_to_json(r);
+  for (const char* key : {"status", "criterion", "iterations", "wall_time_s", "strain_energy",
+                          "strain_energy_exact", "max_overlap", "stages", "fibres", "contacts",
+                          "walls", "history"})
+    EXPECT_TRUE(j.contains(key)) << key;
+  EXPECT_TRUE(j["contacts"][0].contains("total_force"));
+  EXPECT_TRUE(j["contacts"][0]["points"][0].contains("position"));
+}
+
+TEST(Result, AtomicWriteLeavesNoTemporaryAndReplacesWhole) {
+  const std::string folder = ::testing::TempDir() + "atomic/";
+  std::filesystem::remove_all(folder);
+  Result r;
+  r.scene = "x";
+  r.status = "converged";
+  write_result(folder + "r.json", r);
+  r.status = "diverged";
+  write_result(folder + "r.json", r);
+  int files = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(folder)) {
+    ++files;
+    EXPECT_EQ(entry.path().filename(), "r.json");
+  }
+  EXPECT_EQ(files, 1);
+  EXPECT_EQ(read_result(folder + "r.json").status, "diverged");
+}
+
+TEST(Result, ReadingSomethingElseIsAnInputError) {
+  const std::string path = ::testing::TempDir() + "not_a_result.json";
+  std::ofstream(path) << "{\"scene\": 3}";
+  EXPECT_THROW(read_result(path), InputError);
+}
+
+}  // namespace
+}  // namespace fibrecheck

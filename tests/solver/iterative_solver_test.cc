@@ -1,0 +1,174 @@
+// Behaviour of the iterative solver beyond the closed forms: statuses for trouble, the stages a
+// scene runs, determinism, the update rules and friction.
+#include "iterative_solver.h"
+
+#include <gtest/gtest.h>
+
+#include "test_scenes.h"
+#include "tow_generator.h"
+
+namespace fibrecheck {
+namespace {
+
+Result solve(const Scene& scene) { return solve_iteratively(scene, SolverOptions::from_scene(scene)); }
+
+bool has_stage(const Result& r, const std::string& stage) {
+  return std::find(r.stages.begin(), r.stages.end(), stage) != r.stages.end();
+}
+
+void expect_finite(const Result& r) {
+  EXPECT_TRUE(std::isfinite(r.strain_energy) && std::isfinite(r.strain_energy_exact) &&
+              std::isfinite(r.max_overlap));
+  for (const FibreResult& f : r.fibres)
+    for (const Eigen::Vector3d& u : f.displacement) EXPECT_TRUE(u.allFinite());
+  for (const ContactResult& c : r.contacts) EXPECT_TRUE(std::isfinite(c.total_force));
+}
+
+// Two fibres whose pinned supports overlap: no force can separate them there.
+TEST(IterativeSolver, OverlapAtTwoPinnedSupportsIsUnresolvable) {
+  Scene s;
+  s.fibres.push_back(testing::fibre("A", {0, 0, 0}, {1, 0, 0}));
+  s.fibres.push_back(testing::fibre("B", {0, 0, 0.015}, {0, 1, 0.015}));
+  const Result r = solve(s);
+  EXPECT_EQ(r.status, "unresolvable");
+  EXPECT_EQ(r.iterations, 0);
+  EXPECT_NE(r.message.find("A and B"), std::string::npos) << r.message;
+  EXPECT_NE(r.message.find("s = 0"), std::string::npos) << r.message;
+  expect_finite(r);
+}
+
+// Rule seed with c three times the stability limit 2/λmax(W): P' = P + c·d oscillates (§4.3.2,
+// "if c is too large the system will become unstable"); the run must end as diverged, finite.
+TEST(IterativeSolver, SeedRuleBeyondTheStabilityLimitIsReportedDiverged) {
+  Scene s = testing::crossing(0.5, 0.5, 1e-3);
+  const double C = 2 * testing::compliance(0.5, 1.0, testing::bending_stiffness(0.01, 80000));
+  s.solver.rule = UpdateRule::seed;
+  s.solver.c = 3.0 * 2.0 / C;
+  const Result r = solve(s);
+  EXPECT_EQ(r.status, "diverged");
+  EXPECT_NE(r.message.find("lambda_max"), std::string::npos) << r.message;
+  EXPECT_LT(r.iterations, s.solver.max_iterations);
+  expect_finite(r);
+  // Just below the limit the same rule converges.
+  s.solver.c = 0.95 * 2.0 / C;
+  EXPECT_EQ(solve(s).status, "converged");
+}
+
+TEST(IterativeSolver, IterationCapIsReportedAsMaxIterations) {
+  Scene s = testing::parallel(1e-4, 50);
+  s.solver.max_iterations = 5;
+  const Result r = solve(s);
+  EXPECT_EQ(r.status, "max_iterations");
+  EXPECT_EQ(r.criterion, "max_iterations");
+  EXPECT_EQ(r.iterations, 5);
+  EXPECT_GT(r.max_overlap, s.overlap_tolerance());
+  EXPECT_NE(r.message.find("5 iterations"), std::string::npos);
+  expect_finite(r);
+}
+
+// The energy criterion of §4.3.6 ends a slow run when the last n_i energies agree within t_U.
+TEST(IterativeSolver, EnergyCriterionStopsWhenEnergySettles) {
+  Scene s = testing::parallel(1e-4, 50);
+  s.solver.rule = UpdateRule::automatic;
+  s.solver.energy_tolerance = 1e-15;
+  s.solver.energy_window = 20;
+  const Result r = solve(s);
+  EXPECT_EQ(r.status, "converged");
+  EXPECT_EQ(r.criterion, "energy");
+  EXPECT_TRUE(has_stage(r, "energy_criterion"));
+  ASSERT_GE(r.history.size(), 2u);
+}
+
+// Each scene runs only the stages it needs (DESIGN §2).
+TEST(IterativeSolver, ScenesRunOnlyTheStagesTheyNeed) {
+  const Result crossing = solve(testing::crossing(0.5, 0.5, 1e-3));
+  EXPECT_TRUE(has_stage(crossing, "point_contacts"));
+  EXPECT_FALSE(has_stage(crossing, "slices"));
+  EXPECT_FALSE(has_stage(crossing, "broad_phase"));
+  EXPECT_FALSE(has_stage(crossing, "walls"));
+  EXPECT_FALSE(has_stage(crossing, "friction"));
+  const Result parallel = solve(testing::parallel(1e-4, 20));
+  EXPECT_TRUE(has_stage(parallel, "slices"));
+  EXPECT_FALSE(has_stage(parallel, "point_contacts"));
+  Scene with_friction = testing::crossing(0.5, 0.5, 1e-3);
+  with_friction.contact.friction = 0.3;
+  EXPECT_TRUE(has_stage(solve(with_friction), "friction"));
+  TowOptions tow;
+  tow.fibres = 7;
+  tow.slices = 20;
+  const Result t = solve(generate_tow(tow));
+  EXPECT_TRUE(has_stage(t, "broad_phase"));
+  EXPECT_TRUE(has_stage(t, "walls"));
+  EXPECT_TRUE(has_stage(t, "slices"));
+  EXPECT_FALSE(has_stage(t, "point_contacts"));
+}
+
+// With normals that do not turn, friction has nothing to hold: the answer equals the frictionless
+// one (Eqs. 4.29–4.33 keep the previous resultant's tangential part, which is zero here).
+TEST(IterativeSolver, FrictionWithFixedNormalsChangesNothing) {
+  Scene s = testing::crossing(0.3, 0.6, 1e-3);
+  const Result frictionless = solve(s);
+  s.contact.friction = 0.4;
+  const Result with_friction = solve(s);
+  ASSERT_EQ(with_friction.status, "converged");
+  EXPECT_NEAR(with_friction.contacts[0].total_force, frictionless.contacts[0].total_force,
+              1e-12 * frictionless.contacts[0].total_force);
+}
+
+TEST(IterativeSolver, RunsAreDeterministic) {
+  TowOptions tow;
+  tow.fibres = 19;
+  tow.slices = 30;
+  tow.seed = 4;
+  Scene s = generate_tow(tow);
+  s.solver.rule = UpdateRule::accelerated;
+  const Result first = solve(s), second = solve(s);
+  ASSERT_EQ(first.status, "converged");
+  EXPECT_EQ(first.iterations, second.iterations);
+  EXPECT_EQ(first.strain_energy_exact, second.strain_energy_exact);
+  ASSERT_EQ(first.contacts.size(), second.contacts.size());
+  for (std::size_t i = 0; i < first.contacts.size(); ++i)
+    EXPECT_EQ(first.contacts[i].total_force, second.contacts[i].total_force);
+}
+
+// A compacted tow ends with every contact just touching: no overlap above t_d, no force across a
+// gap above t_d, forces balanced against the walls (no external load: the walls' reactions and the
+// supports carry the compaction).
+TEST(IterativeSolver, CompactedTowEndsJustTouching) {
+  TowOptions tow;
+  tow.fibres = 19;
+  tow.slices = 40;
+  tow.seed = 5;
+  Scene s = generate_tow(tow);
+  s.solver.rule = UpdateRule::accelerated;
+  const Result r = solve(s);
+  ASSERT_EQ(r.status, "converged") << r.message;
+  EXPECT_LT(r.max_overlap, s.overlap_tolerance());
+  EXPECT_LT(r.gap_force_residual, s.overlap_tolerance());
+  EXPECT_GT(r.contacts.size(), 3u);
+  for (const ContactResult& c : r.contacts) EXPECT_GT(c.total_force, 0.0);
+  expect_finite(r);
+  // The accelerated and the plain rule reach the same equilibrium.
+  s.solver.rule = UpdateRule::automatic;
+  s.solver.max_iterations = 400000;
+  const Result plain = solve(s);
+  ASSERT_EQ(plain.status, "converged") << plain.message;
+  EXPECT_NEAR(plain.strain_energy_exact, r.strain_energy_exact, 1e-3 * r.strain_energy_exact);
+}
+
+TEST(IterativeSolver, SolverOptionsValidation) {
+  SolverOptions o;
+  o.overlap_tolerance = 1e-7;
+  std::string why;
+  EXPECT_TRUE(o.is_valid(&why));
+  o.rule = UpdateRule::seed;
+  EXPECT_FALSE(o.is_valid(&why));
+  EXPECT_NE(why.find("c"), std::string::npos);
+  o.c = 0.1;
+  EXPECT_TRUE(o.is_valid(&why));
+  o.overlap_tolerance = 0.0;
+  EXPECT_FALSE(o.is_valid(&why));
+}
+
+}  // namespace
+}  // namespace fibrecheck
