@@ -54,16 +54,6 @@ double point_load_moment(double P, double a, double x, double L) {
   return P * a * (1 - x / L);              // Eq. 4.11
 }
 
-double uniform_load_deflection(double q, double x, double L, double EI) {
-  return q * x * (L * L * L - 2 * L * x * x + x * x * x) / (24 * EI);
-}
-
-double uniform_load_moment(double q, double x, double L) { return q * x * (L - x) / 2; }
-
-double uniform_load_deflection_integral(double q, double L, double EI) {
-  return q * L * L * L * L * L / (120 * EI);
-}
-
 double point_compliance(double a, double L, double EI) {
   const double b = L - a;
   return a * a * b * b / (3 * EI * L);

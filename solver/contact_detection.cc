@@ -230,17 +230,23 @@ int ContactDetector::measure(std::vector<Contact>& contacts, const std::vector<E
   const int m = static_cast<int>(grid_.size()) - 1;
   int held = 0;
   const int count = static_cast<int>(contacts.size());
+  // Plain local pointers and a copy of the axis: the stores into the contacts could otherwise alias
+  // them, and the compiler would reload them for every contact.
+  const Fibre* const fibre = fibres_.data();
+  const Eigen::Vector3d* const side_a = u_a.data();
+  const Eigen::Vector3d* const side_b = u_b.data();
+  const Eigen::Vector3d axis = axis_;
 #pragma omp parallel for schedule(static) reduction(+ : held) if (count > 4096)
   for (int k = 0; k < count; ++k) {
     Contact& c = contacts[k];
-    const Eigen::Vector3d ac = fibres_[c.a].point(c.s_a) + u_a[k];
+    const Eigen::Vector3d ac = fibre[c.a].point(c.s_a) + side_a[k];
     if (c.kind == ContactKind::wall) {
-      c.overlap = fibres_[c.a].radius - c.normal.dot(ac - walls_[c.b].point);
+      c.overlap = fibre[c.a].radius - c.normal.dot(ac - walls_[c.b].point);
       continue;
     }
-    Eigen::Vector3d difference = fibres_[c.b].point(c.s_b) + u_b[k] - ac;
-    if (c.kind == ContactKind::line) difference -= difference.dot(axis_) * axis_;
-    set_normal_and_overlap(c, difference, fibres_[c.a].radius + fibres_[c.b].radius, false);
+    Eigen::Vector3d difference = fibre[c.b].point(c.s_b) + side_b[k] - ac;
+    if (c.kind == ContactKind::line) difference -= difference.dot(axis) * axis;
+    set_normal_and_overlap(c, difference, fibre[c.a].radius + fibre[c.b].radius, false);
     held += c.normal_held ? 1 : 0;
     if (c.kind == ContactKind::point && c.force <= 0.0) {
       // Until it pushes, a point contact follows the closest points of the deformed centrelines

@@ -7,26 +7,47 @@
 
 namespace fibrecheck {
 
-namespace {
+/// Lane k of each array is the bending plane of e_{k+1}: one SIMD operation updates both planes.
+/// The arithmetic is that of beam.h, term for term, so both planes round exactly as before.
+struct Superposition::PlaneSums {
+  Eigen::Array2d Sa = Eigen::Array2d::Zero(), Sa3 = Eigen::Array2d::Zero();
+  Eigen::Array2d Sb = Eigen::Array2d::Zero(), Sb3 = Eigen::Array2d::Zero();
 
-/// Running sums of both bending planes (beam.h).
-struct PlaneSums {
-  BeamSums s[2];
-
-  void add_right(const Eigen::Vector2d& p, double b) {
-    for (int k = 0; k < 2; ++k) {
-      s[k].Sb += p[k] * b;
-      s[k].Sb3 += p[k] * b * b * b;
-    }
+  void add_right(const Eigen::Array2d& p, double b) {
+    Sb += p * b;
+    Sb3 += p * b * b * b;
   }
   /// Moves a load from the "a ≥ x" sums to the "a < x" sums.
-  void move_left(const Eigen::Vector2d& p, double a, double b) {
-    for (int k = 0; k < 2; ++k) {
-      s[k].Sb -= p[k] * b;
-      s[k].Sb3 -= p[k] * b * b * b;
-      s[k].Sa += p[k] * a;
-      s[k].Sa3 += p[k] * a * a * a;
-    }
+  void move_left(const Eigen::Array2d& p, double a, double b) {
+    Sb -= p * b;
+    Sb3 -= p * b * b * b;
+    Sa += p * a;
+    Sa3 += p * a * a * a;
+  }
+  /// The same for the moments alone, which need no cubes.
+  void move_left_moment(const Eigen::Array2d& p, double a, double b) {
+    Sb -= p * b;
+    Sa += p * a;
+  }
+  /// 6EIL·v(x) in both planes (Eqs. 4.12–4.13).
+  Eigen::Array2d scaled_deflection(double x, double L) const {
+    return scaled_deflection_from_sums(Sa, Sa3, Sb, Sb3, x, L);
+  }
+  /// M(x) in both planes (Eqs. 4.10–4.11).
+  Eigen::Array2d moment(double x, double L) const { return moment_from_sums(Sa, Sb, x, L); }
+};
+
+namespace {
+
+/// (F·e1, F·e2) for one fibre: the rows of [e1 e2] held as arrays, so a force is resolved into both
+/// planes at once. Summed in the order of Eigen's dot, (F₀e₀ + F₁e₁) + F₂e₂.
+struct PlaneProjection {
+  Eigen::Array2d r0, r1, r2;
+
+  explicit PlaneProjection(const Fibre& f)
+      : r0(f.e1[0], f.e2[0]), r1(f.e1[1], f.e2[1]), r2(f.e1[2], f.e2[2]) {}
+  Eigen::Array2d operator()(const Eigen::Vector3d& F) const {
+    return F[0] * r0 + F[1] * r1 + F[2] * r2;
   }
 };
 
@@ -90,12 +111,30 @@ void Superposition::resort(const std::vector<Contact>& contacts) {
   }
 }
 
-Eigen::Vector2d Superposition::slot_force(int fibre, const Slot& slot,
-                                          const std::vector<Contact>& /*contacts*/,
-                                          const std::vector<Eigen::Vector3d>& force_on_a) const {
-  const Fibre& f = fibres_[fibre];
-  const Eigen::Vector3d force = slot.sign * force_on_a[slot.contact];
-  return {force.dot(f.e1), force.dot(f.e2)};
+// Inline: it is the first half of the inner loop of every evaluation.
+inline void Superposition::load_components(int fibre,
+                                           const std::vector<Eigen::Vector3d>& force_on_a,
+                                           bool external, std::vector<Eigen::Array2d>& p,
+                                           PlaneSums& sums) const {
+  const std::size_t n = slots_[fibre].size();
+  const Slot* const slot = slots_[fibre].data();
+  const Eigen::Vector3d* const force = force_on_a.data();
+  const double L = fibres_[fibre].length;
+  const PlaneProjection project(fibres_[fibre]);
+  if (p.size() < n) p.resize(n);
+  Eigen::Array2d* const load = p.data();
+  for (std::size_t j = 0; j < n; ++j) {
+    // The forces are gathered in slice order, far apart: fetch a few slots ahead.
+    if (j + 8 < n && slot[j + 8].contact >= 0) __builtin_prefetch(&force[slot[j + 8].contact]);
+    Eigen::Array2d pj;
+    if (slot[j].contact >= 0)  // sign ±1: exact, the same as resolving ±F
+      pj = static_cast<double>(slot[j].sign) * project(force[slot[j].contact]);
+    else
+      pj = external ? Eigen::Array2d(point_loads_[fibre][-1 - slot[j].contact].p)
+                    : Eigen::Array2d::Zero();
+    load[j] = pj;
+    sums.add_right(pj, L - slot[j].a);
+  }
 }
 
 void Superposition::contact_displacements(const std::vector<Contact>& contacts,
@@ -107,99 +146,82 @@ void Superposition::contact_displacements(const std::vector<Contact>& contacts,
   u_b.resize(contacts.size());
   double energy = 0.0;
   const int n_fibres = static_cast<int>(fibres_.size());
-#pragma omp parallel for schedule(dynamic, 16) reduction(+ : energy) if (n_fibres > 64)
-  for (int i = 0; i < n_fibres; ++i) {
-    const auto& list = slots_[i];
-    const Fibre& f = fibres_[i];
-    const Eigen::Vector2d q = external ? distributed_[i] : Eigen::Vector2d::Zero();
-    if (list.empty() && q.isZero()) continue;
-    thread_local std::vector<Eigen::Vector2d> p;
-    p.resize(list.size());
-    const double L = f.length;
-    PlaneSums sums;
-    for (std::size_t j = 0; j < list.size(); ++j) {
-      const Slot& slot = list[j];
-      if (slot.contact >= 0)
-        p[j] = slot_force(i, slot, contacts, force_on_a);
-      else
-        p[j] = external ? point_loads_[i][-1 - slot.contact].p : Eigen::Vector2d::Zero();
-      sums.add_right(p[j], L - slot.a);
-    }
-    double fibre_energy = 0.0;
-    Eigen::Vector2d unit_q_work = Eigen::Vector2d::Zero();  // Σ p·v_{q=1}(a) (Maxwell–Betti)
-    const double inverse = 1.0 / (6.0 * f.EI * L);
-    const bool distributed = !q.isZero();
-    std::size_t moved = 0;
-    Eigen::Vector2d v = Eigen::Vector2d::Zero();
-    double vq = 0.0;
-    for (std::size_t j = 0; j < list.size(); ++j) {
-      const double x = list[j].a;
-      // Slices put several contacts of a fibre at one station: evaluate each station once.
-      if (j == 0 || x != list[j - 1].a) {
-        for (; moved < list.size() && list[moved].a < x; ++moved)
-          sums.move_left(p[moved], list[moved].a, L - list[moved].a);
-        v = {scaled_deflection_from_sums(sums.s[0], x, L) * inverse,
-             scaled_deflection_from_sums(sums.s[1], x, L) * inverse};
+#pragma omp parallel reduction(+ : energy) if (n_fibres > 64)
+  {
+    thread_local std::vector<Eigen::Array2d> p;  // the loads of one fibre, reused between calls
+    // Plain pointers, private to the thread: the compiler need not reload them after each store.
+    Eigen::Vector3d* const out_a = u_a.data();
+    Eigen::Vector3d* const out_b = u_b.data();
+#pragma omp for schedule(dynamic, 16)
+    for (int i = 0; i < n_fibres; ++i) {
+      const std::size_t n = slots_[i].size();
+      const Fibre& f = fibres_[i];
+      const Eigen::Array2d q = external ? Eigen::Array2d(distributed_[i]) : Eigen::Array2d::Zero();
+      const bool distributed = !q.isZero();
+      if (n == 0 && !distributed) continue;
+      PlaneSums sums;
+      load_components(i, force_on_a, external, p, sums);
+      const Slot* const slot = slots_[i].data();
+      const Eigen::Array2d* const load = p.data();
+      const double L = f.length;
+      const double inverse = 1.0 / (6.0 * f.EI * L);
+      double fibre_energy = 0.0;
+      Eigen::Array2d unit_q_work = Eigen::Array2d::Zero();  // Σ p·v_{q=1}(a) (Maxwell–Betti)
+      // Second pass, station by station. Slices put several contacts of a fibre at one station:
+      // each station is evaluated once, then its loads move to the "a < x" sums.
+      for (std::size_t j = 0; j < n;) {
+        const double x = slot[j].a;
+        Eigen::Array2d v = sums.scaled_deflection(x, L) * inverse;
+        double vq = 0.0;
         if (distributed) {
           vq = uniform_load_deflection(1.0, x, L, f.EI);
           v += q * vq;
         }
-      }
-      if (exact_energy) fibre_energy += 0.5 * p[j].dot(v);
-      if (distributed) unit_q_work += p[j] * vq;
-      if (list[j].contact >= 0) {
         const Eigen::Vector3d u = v[0] * f.e1 + v[1] * f.e2;
-        (list[j].sign > 0 ? u_a : u_b)[list[j].contact] = u;
+        do {
+          if (exact_energy) fibre_energy += 0.5 * (load[j] * v).sum();
+          if (distributed) unit_q_work += load[j] * vq;
+          if (slot[j].contact >= 0) (slot[j].sign > 0 ? out_a : out_b)[slot[j].contact] = u;
+          sums.move_left(load[j], x, L - x);
+        } while (++j < n && slot[j].a == x);
       }
+      // ½∫q·v dx = ½ q·(q L⁵/120EI + Σ p·v_{q=1}(a)).
+      const double integral = uniform_load_deflection_integral(1.0, L, f.EI);
+      fibre_energy += 0.5 * (q[0] * (q[0] * integral + unit_q_work[0]) +
+                             q[1] * (q[1] * integral + unit_q_work[1]));
+      energy += fibre_energy;
     }
-    // ½∫q·v dx = ½ q·(q L⁵/120EI + Σ p·v_{q=1}(a)).
-    const double integral = uniform_load_deflection_integral(1.0, L, f.EI);
-    fibre_energy += 0.5 * (q[0] * (q[0] * integral + unit_q_work[0]) +
-                           q[1] * (q[1] * integral + unit_q_work[1]));
-    energy += fibre_energy;
   }
   if (exact_energy) *exact_energy = energy;
 }
 
-void Superposition::fibre_field(int fibre, const std::vector<Contact>& contacts,
+void Superposition::fibre_field(int fibre, const std::vector<Contact>& /*contacts*/,
                                 const std::vector<Eigen::Vector3d>& force_on_a, bool external,
                                 const std::vector<double>& s, std::vector<Eigen::Vector3d>& u,
                                 std::vector<Eigen::Vector2d>* moment) const {
   const auto& list = slots_[fibre];
   const Fibre& f = fibres_[fibre];
   const double L = f.length;
-  const Eigen::Vector2d q = external ? distributed_[fibre] : Eigen::Vector2d::Zero();
-  thread_local std::vector<Eigen::Vector2d> p;
-  p.resize(list.size());
+  const Eigen::Array2d q = external ? Eigen::Array2d(distributed_[fibre]) : Eigen::Array2d::Zero();
+  thread_local std::vector<Eigen::Array2d> p;
   PlaneSums sums;
-  for (std::size_t j = 0; j < list.size(); ++j) {
-    const Slot& slot = list[j];
-    if (slot.contact >= 0)
-      p[j] = slot_force(fibre, slot, contacts, force_on_a);
-    else
-      p[j] = external ? point_loads_[fibre][-1 - slot.contact].p : Eigen::Vector2d::Zero();
-    sums.add_right(p[j], L - slot.a);
-  }
+  load_components(fibre, force_on_a, external, p, sums);
   u.resize(s.size());
   if (moment) moment->resize(s.size());
+  const double scale = 6.0 * f.EI * L;
   std::size_t moved = 0;
   for (std::size_t i = 0; i < s.size(); ++i) {
     const double x = s[i] * L;
     for (; moved < list.size() && list[moved].a < x; ++moved)
       sums.move_left(p[moved], list[moved].a, L - list[moved].a);
     const double vq = uniform_load_deflection(1.0, x, L, f.EI);
-    const double v1 = deflection_from_sums(sums.s[0], x, L, f.EI) + q[0] * vq;
-    const double v2 = deflection_from_sums(sums.s[1], x, L, f.EI) + q[1] * vq;
-    u[i] = v1 * f.e1 + v2 * f.e2;
-    if (moment) {
-      const double mq = uniform_load_moment(1.0, x, L);
-      (*moment)[i] = {moment_from_sums(sums.s[0], x, L) + q[0] * mq,
-                      moment_from_sums(sums.s[1], x, L) + q[1] * mq};
-    }
+    const Eigen::Array2d v = sums.scaled_deflection(x, L) / scale + q * vq;
+    u[i] = v[0] * f.e1 + v[1] * f.e2;
+    if (moment) (*moment)[i] = sums.moment(x, L) + q * uniform_load_moment(1.0, x, L);
   }
 }
 
-double Superposition::trapezium_energy(const std::vector<Contact>& contacts,
+double Superposition::trapezium_energy(const std::vector<Contact>& /*contacts*/,
                                        const std::vector<Eigen::Vector3d>& force_on_a,
                                        int intervals) const {
   std::vector<double> s(intervals + 1);
@@ -208,16 +230,24 @@ double Superposition::trapezium_energy(const std::vector<Contact>& contacts,
   const int n_fibres = static_cast<int>(fibres_.size());
 #pragma omp parallel for schedule(dynamic, 16) reduction(+ : energy) if (n_fibres > 64)
   for (int i = 0; i < n_fibres; ++i) {
-    thread_local std::vector<Eigen::Vector3d> u;
-    thread_local std::vector<Eigen::Vector2d> m;
-    fibre_field(i, contacts, force_on_a, true, s, u, &m);
-    const double h = fibres_[i].length / intervals;
+    // Only the moments: the deflections (and their cubic sums) are not needed here.
+    const auto& list = slots_[i];
+    const double L = fibres_[i].length;
+    const Eigen::Array2d q = distributed_[i];
+    thread_local std::vector<Eigen::Array2d> p;
+    PlaneSums sums;
+    load_components(i, force_on_a, true, p, sums);
+    std::size_t moved = 0;
     double sum = 0.0;
     for (int j = 0; j <= intervals; ++j) {
+      const double x = s[j] * L;
+      for (; moved < list.size() && list[moved].a < x; ++moved)
+        sums.move_left_moment(p[moved], list[moved].a, L - list[moved].a);
+      const Eigen::Array2d m = sums.moment(x, L) + q * uniform_load_moment(1.0, x, L);
       const double weight = (j == 0 || j == intervals) ? 0.5 : 1.0;
-      sum += weight * m[j].squaredNorm();
+      sum += weight * m.square().sum();
     }
-    energy += sum * h / (2.0 * fibres_[i].EI);  // Eq. 4.34, trapezium rule
+    energy += sum * (L / intervals) / (2.0 * fibres_[i].EI);  // Eq. 4.34, trapezium rule
   }
   return energy;
 }

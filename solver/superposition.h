@@ -62,8 +62,13 @@ class Superposition {
     Eigen::Vector2d p;  ///< components along e1, e2, N
   };
 
-  Eigen::Vector2d slot_force(int fibre, const Slot& slot, const std::vector<Contact>& contacts,
-                             const std::vector<Eigen::Vector3d>& force_on_a) const;
+  /// The running sums of beam.h for both bending planes at once (superposition.cc).
+  struct PlaneSums;
+
+  /// First pass over a fibre's loads, O(k): each load's components along e1, e2 (N) in slot order
+  /// into `p`, and all of them into the "a ≥ x" sums.
+  void load_components(int fibre, const std::vector<Eigen::Vector3d>& force_on_a, bool external,
+                       std::vector<Eigen::Array2d>& p, PlaneSums& sums) const;
 
   std::vector<Fibre> fibres_;
   std::vector<std::vector<ExternalPointLoad>> point_loads_;  ///< per fibre
