@@ -7,11 +7,16 @@ namespace fibrecheck {
 
 Residuals measure_residuals(const std::vector<Contact>& contacts) {
   Residuals r;
-  r.max_overlap = contacts.empty() ? 0.0 : -INFINITY;
-  for (const Contact& c : contacts) {
-    r.max_overlap = std::max(r.max_overlap, c.overlap);
-    if (c.force > 0.0) r.gap_force = std::max(r.gap_force, -c.overlap);
+  double max_overlap = contacts.empty() ? 0.0 : -INFINITY, gap_force = 0.0;
+  const int n = static_cast<int>(contacts.size());
+#pragma omp parallel for schedule(static) reduction(max : max_overlap, gap_force) if (n > 4096)
+  for (int k = 0; k < n; ++k) {
+    const Contact& c = contacts[k];
+    max_overlap = std::max(max_overlap, c.overlap);
+    if (c.force > 0.0) gap_force = std::max(gap_force, -c.overlap);
   }
+  r.max_overlap = max_overlap;
+  r.gap_force = gap_force;
   r.overlap = std::max(0.0, r.max_overlap);
   return r;
 }

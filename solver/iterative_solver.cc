@@ -106,6 +106,7 @@ class IterativeSolver {
   std::vector<char> has_point_contact_;
   Eigen::VectorXd previous_forces_;  ///< accelerated rule: the previous iterate P_{k−1}
   Eigen::VectorXd iterate_;          ///< accelerated rule: the current iterate P_k
+  Eigen::VectorXd next_forces_;      ///< scratch: the forces of the next evaluation
   double momentum_t_ = 1.0;
   int uphill_streak_ = 0;
   static constexpr int kRestartStreak = 20;
@@ -240,10 +241,12 @@ void IterativeSolver::update_forces() {
   const bool seed = options_.rule == UpdateRule::seed;
   const bool accelerated = options_.rule == UpdateRule::accelerated;
   Contact* const contact = contacts_.data();
-  Eigen::VectorXd next(n);
+  Eigen::VectorXd& next = next_forces_;
+  next.resize(n);
   // §4.3.2: P' = max(0, P + c·d); under rule seed slices take c/n (Eq. 4.28). The accelerated
   // rule's restart test (gradient restart: −d(y)·(P_{k+1} − P_k) > 0) is summed in the same pass.
   double uphill = 0.0;
+#pragma omp parallel for schedule(static) reduction(+ : uphill) if (n > 4096)
   for (Eigen::Index k = 0; k < n; ++k) {
     const Contact& c = contact[k];
     const double step = seed ? step_ * c.step_scale : step_;
@@ -263,8 +266,12 @@ void IterativeSolver::update_forces() {
     momentum_t_ = restart ? 1.0 : t_next;
     previous_forces_.swap(iterate_);  // P_{k−1} ← P_k, without copying
     iterate_.swap(next);              // P_k ← P'
-    next = (iterate_ + beta * (iterate_ - previous_forces_)).cwiseMax(0.0);
+    next.resize(n);
+#pragma omp parallel for schedule(static) if (n > 4096)
+    for (Eigen::Index k = 0; k < n; ++k)
+      next[k] = std::max(0.0, iterate_[k] + beta * (iterate_[k] - previous_forces_[k]));
   }
+#pragma omp parallel for schedule(static) if (n > 4096)
   for (Eigen::Index k = 0; k < n; ++k) {
     Contact& c = contact[k];
     if (mu > 0.0)  // §4.3.4: keep last iteration's resultant, Coulomb-capped
