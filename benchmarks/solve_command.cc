@@ -145,7 +145,7 @@ int run_solve(const SolveArguments& args) {
     }
     results.push_back(std::move(result));
   }
-  if (scenes.size() > 1) print_table(results, scenes);
+  if (scenes.size() > 1 && !args.quiet) print_table(results, scenes);
   return code;
 }
 
