@@ -291,11 +291,6 @@ bool IterativeSolver::record_history(long iteration) const {
 
 Result IterativeSolver::run() {
   const auto start = Clock::now();
-  Result result;
-  result.scene = scene_.name;
-  result.solver = "iterative";
-  result.rule = to_string(options_.rule);
-
   detect_contacts();
   for (const Contact& c : contacts_) {
     const double r = std::min(fibres_[c.a].radius,
@@ -306,20 +301,15 @@ Result IterativeSolver::run() {
       break;
     }
   }
-  std::string status = "max_iterations", criterion = "max_iterations", message;
   if (auto why = find_unresolvable()) {
     evaluate();
-    result.status = "unresolvable";
-    result.criterion = "unresolvable";
+    Result result = assemble(start);
+    result.status = result.criterion = "unresolvable";
     result.message = *why;
-    result.iterations = 0;
-    Result assembled = assemble(start);
-    assembled.status = "unresolvable";
-    assembled.criterion = "unresolvable";
-    assembled.message = *why;
-    return assembled;
+    return result;
   }
 
+  std::string status = "max_iterations", criterion = "max_iterations", message;
   const bool energy_each_iteration = options_.energy_tolerance > 0.0;
   Eigen::VectorXd best_forces;
   double best_residual = INFINITY;
@@ -412,7 +402,7 @@ Result IterativeSolver::run() {
         << " mm (tolerance " << options_.overlap_tolerance << " mm)";
     message = out.str();
   }
-  result = assemble(start);
+  Result result = assemble(start);
   result.status = status;
   result.criterion = criterion;
   result.message = message;
