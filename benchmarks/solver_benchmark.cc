@@ -91,31 +91,24 @@ void slice_centres(int n, std::vector<Eigen::Vector2d>& centres, std::vector<dou
   for (auto& c : centres) c = Eigen::Vector2d(u(rng), u(rng));
 }
 
-void BM_SliceBroadPhase(benchmark::State& state) {
-  std::vector<Eigen::Vector2d> centres;
-  std::vector<double> radii;
-  slice_centres(static_cast<int>(state.range(0)), centres, radii);
-  std::vector<std::pair<int, int>> pairs;
-  for (auto _ : state) {
-    slice_pairs(centres, radii, 0.0025, pairs);
-    benchmark::DoNotOptimize(pairs.data());
-  }
-  state.SetComplexityN(state.range(0));
-}
-BENCHMARK(BM_SliceBroadPhase)->RangeMultiplier(4)->Range(64, 16384)->Complexity();
+using PairFinder = void (*)(const std::vector<Eigen::Vector2d>&, const std::vector<double>&, double,
+                           std::vector<std::pair<int, int>>&);
 
-void BM_SliceAllPairs(benchmark::State& state) {
+// One slice's contact pairs: by the grid broad phase (slice_pairs) or all pairs (slice_pairs_all).
+template <PairFinder find>
+void BM_SlicePairs(benchmark::State& state) {
   std::vector<Eigen::Vector2d> centres;
   std::vector<double> radii;
   slice_centres(static_cast<int>(state.range(0)), centres, radii);
   std::vector<std::pair<int, int>> pairs;
   for (auto _ : state) {
-    slice_pairs_all(centres, radii, 0.0025, pairs);
+    find(centres, radii, 0.0025, pairs);
     benchmark::DoNotOptimize(pairs.data());
   }
   state.SetComplexityN(state.range(0));
 }
-BENCHMARK(BM_SliceAllPairs)->RangeMultiplier(4)->Range(64, 4096)->Complexity();
+BENCHMARK_TEMPLATE(BM_SlicePairs, slice_pairs)->RangeMultiplier(4)->Range(64, 16384)->Complexity();
+BENCHMARK_TEMPLATE(BM_SlicePairs, slice_pairs_all)->RangeMultiplier(4)->Range(64, 4096)->Complexity();
 
 // A generated, compacted tow (default options, 100 slices) under the accelerated rule: the time of
 // one iteration as the tow grows, without the set-up (detection, the estimate of λmax(W)). Two runs
