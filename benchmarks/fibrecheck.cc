@@ -5,12 +5,16 @@
 //   fibrecheck solve scenes/small_tow_19.json --rule accelerated --out tow.result.json
 //   fibrecheck solve --help-scene
 //   fibrecheck generate tow --fibres 1000 --slices 100 --seed 7 --out tow1000.json
+//   fibrecheck mesh scenes/small_tow_19.json --out small_tow_19.msh --geo small_tow_19.geo
 #include <CLI/CLI.hpp>
 #include <iostream>
 
 #include "exit_codes.h"
 #include "generate_command.h"
 #include "solve_command.h"
+#ifdef FIBRECHECK_WITH_FEM
+#include "mesh_command.h"
+#endif
 
 int main(int argc, char** argv) {
   CLI::App app{"fibrecheck: the iterative fibre-contact method of tow compaction, checked"};
@@ -18,6 +22,9 @@ int main(int argc, char** argv) {
   int exit_code = fibrecheck::kExitConverged;
   fibrecheck::add_solve_command(app, exit_code);
   fibrecheck::add_generate_command(app, exit_code);
+#ifdef FIBRECHECK_WITH_FEM
+  fibrecheck::add_mesh_command(app, exit_code);
+#endif
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

@@ -148,4 +148,20 @@ TEST_F(Cli, GenerateTowIsDeterministicAndChecksItsOptions) {
   EXPECT_EQ(run("solve " + dir_ + "a.json --rule accelerated -q --out " + dir_ + "a.result.json").code, 0);
 }
 
+#ifdef FIBRECHECK_WITH_FEM
+TEST_F(Cli, MeshWritesGmshFilesAndRejectsBadScenes) {
+  const Outcome ok = run("mesh " + scene("two_fibres_crossing") + " --out " + dir_ + "m.msh --geo " +
+                         dir_ + "m.geo");
+  EXPECT_EQ(ok.code, 0) << ok.err;
+  EXPECT_NE(slurp(dir_ + "m.msh").find("$PhysicalNames"), std::string::npos);
+  EXPECT_NE(slurp(dir_ + "m.geo").find("Physical Curve(\"A\""), std::string::npos);
+  json negative = crossing();
+  negative["fibres"][0]["youngs_modulus"] = 0;
+  const Outcome bad = run("mesh " + write("bad.json", negative) + " --out " + dir_ + "bad.msh");
+  EXPECT_EQ(bad.code, 2);
+  EXPECT_NE(bad.err.find("fibres[0].youngs_modulus"), std::string::npos) << bad.err;
+  EXPECT_FALSE(fs::exists(dir_ + "bad.msh"));
+}
+#endif
+
 }  // namespace

@@ -1,0 +1,47 @@
+#include "mesh_command.h"
+
+#include <iostream>
+
+#include "atomic_file.h"
+#include "exit_codes.h"
+#include "fibre_mesh.h"
+#include "input_error.h"
+#include "scene.h"
+
+namespace fibrecheck {
+
+void add_mesh_command(CLI::App& app, int& exit_code) {
+  struct Arguments {
+    std::string scene, out, geo;
+    int slices = 0;
+  };
+  auto args = std::make_shared<Arguments>();
+  CLI::App* mesh = app.add_subcommand("mesh", "Write the Gmsh mesh of a scene for the reference model");
+  mesh->add_option("scene", args->scene, "Scene file (JSON)")->required();
+  mesh->add_option("--out", args->out, "Mesh file (.msh)")->required();
+  mesh->add_option("--geo", args->geo, "Also write the geometry as a Gmsh script (.geo)");
+  mesh->add_option("--slices", args->slices, "Cross-sections n (overrides contact.slices)")
+      ->check(CLI::Range(1, 1000000));
+  mesh->callback([args, &exit_code] {
+    try {
+      Scene scene = read_scene(args->scene);
+      if (args->slices > 0) scene.contact.slices = args->slices;
+      const MeshOptions options;
+      write_mesh(scene, options, args->out);
+      if (!args->geo.empty()) write_file_atomically(args->geo, geo_script(scene, options));
+      std::size_t nodes = 0;
+      for (const FibreStations& f : mesh_stations(scene, options)) nodes += f.s.size();
+      std::cout << "wrote " << args->out << ": " << scene.fibres.size() << " fibres, " << nodes
+                << " stations (supports, slices, loads, contacts)\n";
+      exit_code = kExitConverged;
+    } catch (const InputError& e) {
+      std::cerr << "fibrecheck mesh: error: " << e.what() << "\n";
+      exit_code = kExitBadInput;
+    } catch (const std::exception& e) {
+      std::cerr << "fibrecheck mesh: error: " << args->out << ": " << e.what() << "\n";
+      exit_code = kExitBadInput;
+    }
+  });
+}
+
+}  // namespace fibrecheck

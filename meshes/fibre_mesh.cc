@@ -1,0 +1,154 @@
+#include "fibre_mesh.h"
+
+#include <gmsh.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <sstream>
+
+#include "atomic_file.h"
+#include "contact_detection.h"
+#include "fibre.h"
+
+namespace fibrecheck {
+
+namespace {
+
+/// Sorted, de-duplicated stations; a contact station marks its neighbourhood fine.
+void add_station(FibreStations& f, double s, bool fine) {
+  f.s.push_back(std::min(1.0, std::max(0.0, s)));
+  f.fine.push_back(fine ? 1 : 0);
+}
+
+void sort_unique(FibreStations& f) {
+  std::vector<std::size_t> order(f.s.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return f.s[a] < f.s[b]; });
+  std::vector<double> s;
+  std::vector<char> fine;
+  for (std::size_t i : order) {
+    if (!s.empty() && f.s[i] - s.back() < 1e-9) {
+      fine.back() = static_cast<char>(fine.back() | f.fine[i]);
+      continue;
+    }
+    s.push_back(f.s[i]);
+    fine.push_back(f.fine[i]);
+  }
+  f.s = std::move(s);
+  f.fine = std::move(fine);
+}
+
+/// Characteristic length at each station: the element length, divided near contacts.
+std::vector<double> station_sizes(const FibreStations& f, const MeshOptions& options) {
+  std::vector<double> size(f.s.size(), f.element_length);
+  for (std::size_t i = 0; i < f.s.size(); ++i)
+    if (f.fine[i]) size[i] = f.element_length / options.contact_refinement;
+  return size;
+}
+
+}  // namespace
+
+std::vector<FibreStations> mesh_stations(const Scene& scene, const MeshOptions& options) {
+  std::vector<Fibre> fibres;
+  for (const FibreSpec& spec : scene.fibres)
+    fibres.push_back(make_fibre(spec, scene.contact.axis, scene.contact.parallel_angle_deg));
+  const int n = scene.contact.slices;
+  std::vector<FibreStations> stations(fibres.size());
+  double smallest_radius = INFINITY;
+  for (const Fibre& f : fibres) smallest_radius = std::min(smallest_radius, f.radius);
+  ContactDetector detector(fibres, scene, 0.1 * smallest_radius);
+  for (std::size_t i = 0; i < fibres.size(); ++i) {
+    FibreStations& f = stations[i];
+    f.id = fibres[i].id;
+    f.element_length = options.size_per_slice * fibres[i].length / n;
+    add_station(f, 0.0, false);
+    add_station(f, 1.0, false);
+    if (!scene.walls.empty())
+      for (int j = 0; j < n; ++j) add_station(f, (j + 0.5) / n, false);
+    if (detector.slicing() && fibres[i].along_tow_axis) {
+      const Eigen::Vector3d axis = scene.contact.axis.normalized();
+      const double along = (fibres[i].end - fibres[i].start).dot(axis);
+      for (int j = 0; j < n; ++j) {
+        const double s = (detector.slice_position(j) - fibres[i].start.dot(axis)) / along;
+        if (s > 0.0 && s < 1.0) add_station(f, s, false);
+      }
+    }
+  }
+  for (const LoadSpec& load : scene.loads)
+    if (load.kind == LoadKind::point) add_station(stations[scene.fibre_index(load.fibre)], load.position, false);
+  std::vector<std::vector<Eigen::Vector3d>> undeformed(
+      fibres.size(), std::vector<Eigen::Vector3d>(detector.grid().size(), Eigen::Vector3d::Zero()));
+  for (const Contact& c : detector.detect(undeformed)) {
+    if (c.kind != ContactKind::point) continue;  // slices and walls already have their stations
+    add_station(stations[c.a], c.s_a, true);
+    add_station(stations[c.b], c.s_b, true);
+  }
+  for (FibreStations& f : stations) sort_unique(f);
+  return stations;
+}
+
+void write_mesh(const Scene& scene, const MeshOptions& options, const std::string& path) {
+  const std::vector<FibreStations> stations = mesh_stations(scene, options);
+  gmsh::initialize();
+  gmsh::option::setNumber("General.Terminal", 0);
+  gmsh::option::setNumber("Mesh.MshFileVersion", 4.1);
+  gmsh::model::add(scene.name);
+  for (std::size_t i = 0; i < scene.fibres.size(); ++i) {
+    const FibreSpec& spec = scene.fibres[i];
+    const FibreStations& f = stations[i];
+    const std::vector<double> size = station_sizes(f, options);
+    std::vector<int> points, lines;
+    for (std::size_t j = 0; j < f.s.size(); ++j) {
+      const Eigen::Vector3d x = spec.start + f.s[j] * (spec.end - spec.start);
+      points.push_back(gmsh::model::geo::addPoint(x[0], x[1], x[2], size[j]));
+    }
+    for (std::size_t j = 0; j + 1 < points.size(); ++j)
+      lines.push_back(gmsh::model::geo::addLine(points[j], points[j + 1]));
+    gmsh::model::geo::synchronize();
+    const int curve = gmsh::model::addPhysicalGroup(1, lines);
+    gmsh::model::setPhysicalName(1, curve, spec.id);
+    const int start = gmsh::model::addPhysicalGroup(0, {points.front()});
+    gmsh::model::setPhysicalName(0, start, spec.id + "/start");
+    const int end = gmsh::model::addPhysicalGroup(0, {points.back()});
+    gmsh::model::setPhysicalName(0, end, spec.id + "/end");
+  }
+  gmsh::model::mesh::generate(1);
+  // Write next to the target, then rename: an interrupted run never leaves half a mesh.
+  const std::filesystem::path target(path);
+  const std::string temporary =
+      (target.parent_path() / ("." + target.filename().string() + ".tmp.msh")).string();
+  gmsh::write(temporary);
+  gmsh::finalize();
+  std::filesystem::rename(temporary, target);
+}
+
+std::string geo_script(const Scene& scene, const MeshOptions& options) {
+  const std::vector<FibreStations> stations = mesh_stations(scene, options);
+  std::ostringstream out;
+  out.precision(17);
+  out << "// " << scene.name << ": each fibre's chord with nodes at its supports, slices, loads\n"
+      << "// and contact points (refined there). Mesh with: gmsh -1 " << scene.name << ".geo\n";
+  int point = 0, line = 0, group = 0;
+  for (std::size_t i = 0; i < scene.fibres.size(); ++i) {
+    const FibreSpec& spec = scene.fibres[i];
+    const FibreStations& f = stations[i];
+    const std::vector<double> size = station_sizes(f, options);
+    const int first_point = point + 1, first_line = line + 1;
+    out << "// fibre " << spec.id << "\n";
+    for (std::size_t j = 0; j < f.s.size(); ++j) {
+      const Eigen::Vector3d x = spec.start + f.s[j] * (spec.end - spec.start);
+      out << "Point(" << ++point << ") = {" << x[0] << ", " << x[1] << ", " << x[2] << ", " << size[j]
+          << "};\n";
+    }
+    for (int p = first_point; p < point; ++p) out << "Line(" << ++line << ") = {" << p << ", " << p + 1 << "};\n";
+    out << "Physical Curve(\"" << spec.id << "\", " << ++group << ") = {";
+    for (int l = first_line; l <= line; ++l) out << l << (l < line ? ", " : "");
+    out << "};\n";
+    out << "Physical Point(\"" << spec.id << "/start\", " << ++group << ") = {" << first_point << "};\n";
+    out << "Physical Point(\"" << spec.id << "/end\", " << ++group << ") = {" << point << "};\n";
+  }
+  return out.str();
+}
+
+}  // namespace fibrecheck
