@@ -24,6 +24,14 @@ int main(int argc, char** argv) {
   fibrecheck::add_generate_command(app, exit_code);
 #ifdef FIBRECHECK_WITH_FEM
   fibrecheck::add_mesh_command(app, exit_code);
+#else
+  app.add_subcommand("mesh", "(needs the build with -DFIBRECHECK_WITH_FEM=ON)")
+      ->allow_extras()
+      ->callback([&exit_code] {
+        std::cerr << "fibrecheck mesh: error: this build has no finite-element stack; configure "
+                     "with -DFIBRECHECK_WITH_FEM=ON\n";
+        exit_code = fibrecheck::kExitBadInput;
+      });
 #endif
   try {
     app.parse(argc, argv);

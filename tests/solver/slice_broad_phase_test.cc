@@ -21,7 +21,9 @@ TEST(SliceBroadPhase, FindsTheSamePairsAsAllPairs) {
       slice_pairs(centres, radii, margin, grid);
       slice_pairs_all(centres, radii, margin, all);
       EXPECT_EQ(grid, all) << "n = " << n << ", margin = " << margin;
-      if (n >= 300) EXPECT_FALSE(all.empty());
+      if (n >= 300) {
+        EXPECT_FALSE(all.empty());
+      }
     }
   }
 }
