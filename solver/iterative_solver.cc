@@ -108,6 +108,7 @@ class IterativeSolver {
   Eigen::VectorXd iterate_;          ///< accelerated rule: the current iterate P_k
   Eigen::VectorXd next_forces_;      ///< scratch: the forces of the next evaluation
   double momentum_t_ = 1.0;
+  bool forces_gathered_ = false;  ///< force_on_a_ matches the contacts' forces
   int uphill_streak_ = 0;
   static constexpr int kRestartStreak = 20;
   double lambda_max_ = 0.0;
@@ -138,6 +139,7 @@ void IterativeSolver::gather_forces() {
   const int n = static_cast<int>(contacts_.size());
 #pragma omp parallel for schedule(static) if (n > 4096)
   for (int k = 0; k < n; ++k) force[k] = contact[k].force_on_a();
+  forces_gathered_ = true;
 }
 
 void IterativeSolver::detect_contacts() {
@@ -228,7 +230,7 @@ std::optional<std::string> IterativeSolver::find_unresolvable() const {
 }
 
 void IterativeSolver::evaluate() {
-  gather_forces();
+  if (!forces_gathered_) gather_forces();
   superposition_.contact_displacements(contacts_, force_on_a_, true, u_a_, u_b_, &exact_energy_);
   if (detector_.needs_polylines()) compute_grid(true);
   held_normals_ = detector_.measure(contacts_, u_a_, u_b_, grid_u_);
@@ -277,7 +279,9 @@ void IterativeSolver::update_forces() {
     if (mu > 0.0)  // §4.3.4: keep last iteration's resultant, Coulomb-capped
       c.friction = coulomb_capped_friction(force_on_a_[k], c.normal, next[k], mu);
     c.force = next[k];
+    force_on_a_[k] = c.force_on_a();  // gathered here, saving a pass over the contacts
   }
+  forces_gathered_ = true;
   if (detector_.needs_polylines()) superposition_.resort(contacts_);
 }
 
@@ -391,6 +395,7 @@ Result IterativeSolver::run() {
       contacts_[k].force = best_forces[k];
       contacts_[k].friction.setZero();
     }
+    forces_gathered_ = false;
     evaluate();
   }
   if (status == "max_iterations") {

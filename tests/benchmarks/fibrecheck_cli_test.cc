@@ -25,12 +25,15 @@ std::string slurp(const std::string& path) {
   return s.str();
 }
 
+/// Runs the program; its output goes to files named after the running test, since ctest runs
+/// tests in parallel.
 Outcome run(const std::string& arguments) {
-  const std::string dir = ::testing::TempDir();
-  const std::string command = std::string(FIBRECHECK_BINARY) + " " + arguments + " >" + dir +
-                              "cli.out 2>" + dir + "cli.err";
+  const std::string base = ::testing::TempDir() + "cli_" +
+                           ::testing::UnitTest::GetInstance()->current_test_info()->name();
+  const std::string command = std::string(FIBRECHECK_BINARY) + " " + arguments + " >" + base +
+                              ".out 2>" + base + ".err";
   const int status = std::system(command.c_str());
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(dir + "cli.out"), slurp(dir + "cli.err")};
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(base + ".out"), slurp(base + ".err")};
 }
 
 std::string scene(const std::string& name) { return std::string(FIBRECHECK_SCENES_DIR) + "/" + name + ".json"; }
