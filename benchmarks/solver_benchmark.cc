@@ -113,13 +113,23 @@ BENCHMARK_TEMPLATE(BM_SlicePairs, slice_pairs_all)->RangeMultiplier(4)->Range(64
 // A generated, compacted tow (default options, 100 slices) under the accelerated rule: the time of
 // one iteration as the tow grows, without the set-up (detection, the estimate of λmax(W)). Two runs
 // of 200 and 2200 iterations; the difference of their times over 2000.
-void BM_TowIteration(benchmark::State& state) {
+/// A generated tow of `fibres` fibres (default options, 100 slices).
+Scene default_tow(int fibres) {
   TowOptions options;
-  options.fibres = static_cast<int>(state.range(0));
+  options.fibres = fibres;
   options.slices = 100;
-  const Scene scene = generate_tow(options);
+  return generate_tow(options);
+}
+
+SolverOptions accelerated(const Scene& scene) {
   SolverOptions solver = SolverOptions::from_scene(scene);
   solver.rule = UpdateRule::accelerated;
+  return solver;
+}
+
+void BM_TowIteration(benchmark::State& state) {
+  const Scene scene = default_tow(static_cast<int>(state.range(0)));
+  SolverOptions solver = accelerated(scene);
   for (auto _ : state) {
     solver.max_iterations = 200;
     const Result short_run = solve_iteratively(scene, solver);
@@ -136,12 +146,8 @@ BENCHMARK(BM_TowIteration)->Arg(100)->Arg(1000)->Unit(benchmark::kMillisecond)->
 
 // Whole runs to convergence of a generated tow, accelerated rule.
 void BM_TowSolve(benchmark::State& state) {
-  TowOptions options;
-  options.fibres = static_cast<int>(state.range(0));
-  options.slices = 100;
-  const Scene scene = generate_tow(options);
-  SolverOptions solver = SolverOptions::from_scene(scene);
-  solver.rule = UpdateRule::accelerated;
+  const Scene scene = default_tow(static_cast<int>(state.range(0)));
+  const SolverOptions solver = accelerated(scene);
   for (auto _ : state) {
     const Result r = solve_iteratively(scene, solver);
     state.counters["iterations"] = static_cast<double>(r.iterations);
