@@ -8,7 +8,7 @@
 namespace fibrecheck {
 
 /// Lane k of each array is the bending plane of e_{k+1}: one SIMD operation updates both planes.
-/// The arithmetic is that of beam.h, term for term, so both planes round exactly as before.
+/// The arithmetic is that of beam.h term for term, so each plane rounds as the scalar form does.
 struct Superposition::PlaneSums {
   Eigen::Array2d Sa = Eigen::Array2d::Zero(), Sa3 = Eigen::Array2d::Zero();
   Eigen::Array2d Sb = Eigen::Array2d::Zero(), Sb3 = Eigen::Array2d::Zero();

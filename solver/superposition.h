@@ -46,7 +46,7 @@ class Superposition {
   double axial_load_dropped(const std::vector<Contact>& contacts,
                             const std::vector<Eigen::Vector3d>& force_on_a) const;
 
-  /// Fibres carrying at least one contact or external point load, in order.
+  /// The fibres, in the scene's order.
   const std::vector<Fibre>& fibres() const { return fibres_; }
 
  private:
