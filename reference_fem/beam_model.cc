@@ -1,0 +1,206 @@
+#include "beam_model.h"
+
+#include <deal.II/base/quadrature_lib.h>
+#include <deal.II/dofs/dof_handler.h>
+#include <deal.II/dofs/dof_tools.h>
+#include <deal.II/fe/fe_q.h>
+#include <deal.II/fe/fe_system.h>
+#include <deal.II/fe/fe_values.h>
+#include <deal.II/grid/grid_in.h>
+#include <deal.II/grid/tria.h>
+#include <deal.II/lac/affine_constraints.h>
+#include <deal.II/lac/dynamic_sparsity_pattern.h>
+#include <deal.II/lac/petsc_solver.h>
+#include <deal.II/lac/petsc_sparse_matrix.h>
+#include <deal.II/lac/petsc_vector.h>
+#include <deal.II/lac/solver_control.h>
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+#include "fibre.h"
+#include "input_error.h"
+
+namespace fibrecheck {
+
+using namespace dealii;
+
+namespace {
+// Components of the finite element: deflection and moment in the bending plane of e1, then e2.
+constexpr unsigned int kW[2] = {0, 2};
+constexpr unsigned int kM[2] = {1, 3};
+
+/// Physical curve tags of the mesh by name (the fibre ids), from its $PhysicalNames block.
+std::map<std::string, int> curve_tags(const std::string& mesh_file) {
+  std::ifstream in(mesh_file);
+  std::string line;
+  std::map<std::string, int> tags;
+  while (std::getline(in, line) && line != "$PhysicalNames") {
+  }
+  int count = 0;
+  if (!(in >> count)) return tags;
+  for (int i = 0; i < count; ++i) {
+    int dim = 0, tag = 0;
+    std::string name;
+    in >> dim >> tag >> std::ws;
+    std::getline(in, name);
+    if (name.size() >= 2 && name.front() == '"') name = name.substr(1, name.size() - 2);
+    if (dim == 1) tags[name] = tag;
+  }
+  return tags;
+}
+}  // namespace
+
+struct BeamModel::Implementation {
+  const Scene& scene;
+  std::vector<Fibre> fibres;
+  std::map<types::material_id, int> fibre_of_material;
+  Triangulation<1, 3> triangulation;
+  FESystem<1, 3> fe{FE_Q<1, 3>(2), 4};
+  DoFHandler<1, 3> dof_handler{triangulation};
+  AffineConstraints<double> constraints;
+  PETScWrappers::SparseMatrix system_matrix;
+  PETScWrappers::MPI::Vector solution, system_rhs;
+  /// Per fibre: node fraction s → the four DoFs (w1, M1, w2, M2) of that vertex.
+  std::vector<std::map<double, std::array<types::global_dof_index, 4>>> nodes;
+
+  Implementation(const Scene& s, const std::string& mesh_file) : scene(s) {
+    for (const FibreSpec& spec : scene.fibres)
+      fibres.push_back(make_fibre(spec, scene.contact.axis, scene.contact.parallel_angle_deg));
+    const auto tags = curve_tags(mesh_file);
+    for (std::size_t i = 0; i < fibres.size(); ++i) {
+      auto it = tags.find(fibres[i].id);
+      if (it == tags.end()) throw InputError(mesh_file, fibres[i].id, "no physical curve for this fibre");
+      fibre_of_material[static_cast<types::material_id>(it->second)] = static_cast<int>(i);
+    }
+    make_grid(mesh_file);
+  }
+
+  /// Reads the Gmsh mesh: each cell's material id is its fibre's physical curve tag.
+  void make_grid(const std::string& mesh_file) {
+    GridIn<1, 3> grid_in;
+    grid_in.attach_triangulation(triangulation);
+    std::ifstream in(mesh_file);
+    if (!in) throw InputError(mesh_file, "", "no such mesh file");
+    grid_in.read_msh(in);
+  }
+
+  /// DoFs, the pinned supports (w = 0 and M = 0 in both planes) and the node table.
+  void setup_system() {
+    dof_handler.distribute_dofs(fe);
+    nodes.assign(fibres.size(), {});
+    constraints.clear();
+    for (const auto& cell : dof_handler.active_cell_iterators()) {
+      const int f = fibre_of_material.at(cell->material_id());
+      const Fibre& fibre = fibres[f];
+      for (unsigned int v = 0; v < 2; ++v) {
+        const Point<3> p = cell->vertex(v);
+        const Eigen::Vector3d x(p[0], p[1], p[2]);
+        const double s = (x - fibre.start).dot(fibre.t) / fibre.length;
+        std::array<types::global_dof_index, 4> dofs;
+        for (unsigned int c = 0; c < 4; ++c) dofs[c] = cell->vertex_dof_index(v, c);
+        nodes[f][s] = dofs;
+        if (std::fabs(s) < 1e-9 || std::fabs(s - 1.0) < 1e-9)
+          for (unsigned int c = 0; c < 4; ++c) constraints.add_line(dofs[c]);
+      }
+    }
+    constraints.close();
+    DynamicSparsityPattern pattern(dof_handler.n_dofs());
+    DoFTools::make_sparsity_pattern(dof_handler, pattern, constraints, false);
+    system_matrix.reinit(pattern);
+    solution.reinit(MPI_COMM_SELF, dof_handler.n_dofs(), dof_handler.n_dofs());
+    system_rhs.reinit(MPI_COMM_SELF, dof_handler.n_dofs(), dof_handler.n_dofs());
+  }
+
+  /// The mixed form in both planes; uniform loads integrated, point loads at their nodes.
+  void assemble_system(const std::vector<NodalForce>& extra) {
+    const QGauss<1> quadrature(4);
+    FEValues<1, 3> fe_values(fe, quadrature, update_values | update_gradients | update_JxW_values);
+    const unsigned int n = fe.n_dofs_per_cell();
+    FullMatrix<double> cell_matrix(n, n);
+    Vector<double> cell_rhs(n);
+    std::vector<types::global_dof_index> dof_indices(n);
+    std::vector<Eigen::Vector2d> q(fibres.size(), Eigen::Vector2d::Zero());
+    for (const LoadSpec& load : scene.loads)
+      if (load.kind == LoadKind::distributed) {
+        const int f = scene.fibre_index(load.fibre);
+        q[f] += Eigen::Vector2d(load.force.dot(fibres[f].e1), load.force.dot(fibres[f].e2));
+      }
+    system_matrix = 0;
+    system_rhs = 0;
+    for (const auto& cell : dof_handler.active_cell_iterators()) {
+      const int f = fibre_of_material.at(cell->material_id());
+      const double EI = fibres[f].EI;
+      fe_values.reinit(cell);
+      cell_matrix = 0;
+      cell_rhs = 0;
+      for (unsigned int k = 0; k < quadrature.size(); ++k)
+        for (unsigned int i = 0; i < n; ++i) {
+          const unsigned int ci = fe.system_to_component_index(i).first;
+          for (unsigned int j = 0; j < n; ++j) {
+            const unsigned int cj = fe.system_to_component_index(j).first;
+            double value = 0.0;
+            for (int plane = 0; plane < 2; ++plane) {
+              if (ci == kM[plane] && cj == kM[plane])  // ∫ M φ / EI
+                value += fe_values.shape_value(i, k) * fe_values.shape_value(j, k) / EI;
+              if ((ci == kM[plane] && cj == kW[plane]) || (ci == kW[plane] && cj == kM[plane]))
+                value -= fe_values.shape_grad(i, k) * fe_values.shape_grad(j, k);  // −∫ w'φ', −∫ M'ψ'
+            }
+            cell_matrix(i, j) += value * fe_values.JxW(k);
+          }
+          for (int plane = 0; plane < 2; ++plane)
+            if (ci == kW[plane]) cell_rhs(i) -= q[f][plane] * fe_values.shape_value(i, k) * fe_values.JxW(k);
+        }
+      cell->get_dof_indices(dof_indices);
+      constraints.distribute_local_to_global(cell_matrix, cell_rhs, dof_indices, system_matrix, system_rhs);
+    }
+    system_matrix.compress(VectorOperation::add);
+    auto add_point_force = [&](int f, double s, const Eigen::Vector3d& force) {
+      const auto& table = nodes[f];
+      auto it = table.lower_bound(s - 1e-9);
+      if (it == table.end() || std::fabs(it->first - s) > 1e-9)
+        throw std::runtime_error("no mesh node at s = " + std::to_string(s) + " of fibre " + fibres[f].id);
+      const Eigen::Vector2d p(force.dot(fibres[f].e1), force.dot(fibres[f].e2));
+      for (int plane = 0; plane < 2; ++plane)
+        if (!constraints.is_constrained(it->second[kW[plane]]))
+          system_rhs(it->second[kW[plane]]) -= p[plane];  // −Σ P ψ(a)
+    };
+    for (const LoadSpec& load : scene.loads)
+      if (load.kind == LoadKind::point) add_point_force(scene.fibre_index(load.fibre), load.position, load.force);
+    for (const NodalForce& force : extra) add_point_force(force.fibre, force.s, force.force);
+    system_rhs.compress(VectorOperation::add);
+  }
+
+  /// The symmetric indefinite system by MUMPS (a direct solve: no tolerance in the answer).
+  void solve() {
+    SolverControl control(1, 0.0);
+    PETScWrappers::SparseDirectMUMPS mumps(control, MPI_COMM_SELF);
+    mumps.solve(system_matrix, solution, system_rhs);
+    constraints.distribute(solution);
+  }
+};
+
+BeamModel::BeamModel(const Scene& scene, const std::string& mesh_file)
+    : impl_(std::make_unique<Implementation>(scene, mesh_file)) {}
+
+BeamModel::~BeamModel() = default;
+
+void BeamModel::run(const std::vector<NodalForce>& extra) {
+  impl_->setup_system();
+  impl_->assemble_system(extra);
+  impl_->solve();
+}
+
+Eigen::Vector3d BeamModel::displacement(int fibre, double s) const {
+  const auto& table = impl_->nodes.at(fibre);
+  auto it = table.lower_bound(s - 1e-9);
+  if (it == table.end() || std::fabs(it->first - s) > 1e-9)
+    throw std::runtime_error("no mesh node at s = " + std::to_string(s));
+  const Fibre& f = impl_->fibres[fibre];
+  return impl_->solution(it->second[kW[0]]) * f.e1 + impl_->solution(it->second[kW[1]]) * f.e2;
+}
+
+std::size_t BeamModel::unknowns() const { return impl_->dof_handler.n_dofs(); }
+
+}  // namespace fibrecheck

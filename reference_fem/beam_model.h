@@ -1,0 +1,52 @@
+#pragma once
+
+#include <Eigen/Core>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "scene.h"
+
+namespace fibrecheck {
+
+/// A point force on the finite-element beams (N), at a mesh node of one fibre.
+struct NodalForce {
+  int fibre;
+  double s;  ///< fraction of the fibre's length; must be a station of the mesh
+  Eigen::Vector3d force;
+};
+
+/// The fibres of a scene as implicit finite-element beams (deal.II, Gmsh mesh, PETSc): on each
+/// fibre's chord, the transverse deflection w and the bending moment M in both bending planes,
+/// the mixed form of Euler–Bernoulli bending
+///   ∫ M φ / EI dx − ∫ w' φ' dx = 0,     −∫ M' ψ' dx = −∫ q ψ dx − Σ P ψ(a),
+/// with w = 0 and M = 0 at both pinned supports (both essential). Each equation is a 1-D Laplace
+/// problem, whose finite-element solution is exact at the nodes; with quadratic elements the
+/// moment of a uniform load is represented exactly too, so nodal deflections are exact for point
+/// loads at nodes and uniform loads (Eqs. 4.10–4.13).
+///
+/// Like deal.II's tutorial programs, only `run()` does the work: make_grid, setup_system,
+/// assemble_system, solve.
+class BeamModel {
+ public:
+  /// Reads the fibres' mesh (written by `write_mesh`) for the scene.
+  BeamModel(const Scene& scene, const std::string& mesh_file);
+  ~BeamModel();
+
+  /// Solves under the scene's loads plus `extra` forces at mesh nodes.
+  void run(const std::vector<NodalForce>& extra = {});
+
+  /// Displacement (mm) of fibre `fibre` at the mesh node nearest fraction `s`; throws if there is
+  /// no node within 1e-9 of the length.
+  Eigen::Vector3d displacement(int fibre, double s) const;
+
+  /// Number of unknowns (both planes, w and M).
+  std::size_t unknowns() const;
+
+ private:
+  struct Implementation;
+  std::unique_ptr<Implementation> impl_;
+};
+
+}  // namespace fibrecheck
