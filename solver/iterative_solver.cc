@@ -12,6 +12,7 @@
 #include "contact_detection.h"
 #include "convergence.h"
 #include "fibre.h"
+#include "contact_results.h"
 #include "friction.h"
 #include "superposition.h"
 
@@ -457,54 +458,8 @@ Result IterativeSolver::assemble(Clock::time_point start) {
     r.fibres.push_back(std::move(fr));
   }
 
-  // Contacts grouped by pair, in order of first appearance; only points that carry force.
-  std::map<std::tuple<int, int, int>, std::size_t> group;
-  for (std::size_t k = 0; k < contacts_.size(); ++k) {
-    const Contact& c = contacts_[k];
-    if (!(c.force > 0.0)) continue;
-    const auto key = std::make_tuple(static_cast<int>(c.kind), c.a, c.b);
-    auto it = group.find(key);
-    if (it == group.end()) {
-      ContactResult cr;
-      cr.fibres = {fibres_[c.a].id, c.kind == ContactKind::wall ? detector_.wall_specs()[c.b].id
-                                                                  : fibres_[c.b].id};
-      cr.kind = to_string(c.kind);
-      it = group.emplace(key, r.contacts.size()).first;
-      r.contacts.push_back(cr);
-    }
-    ContactPoint p;
-    p.position = c.s_a;
-    const Eigen::Vector3d ac = fibres_[c.a].point(c.s_a) + u_a_[k];
-    p.point = c.kind == ContactKind::wall ? Eigen::Vector3d(ac - fibres_[c.a].radius * c.normal)
-                                          : Eigen::Vector3d(0.5 * (ac + fibres_[c.b].point(c.s_b) + u_b_[k]));
-    p.force = force_on_a_[k];
-    r.contacts[it->second].points.push_back(p);
-  }
-  for (ContactResult& cr : r.contacts) {
-    Eigen::Vector3d total = Eigen::Vector3d::Zero();
-    for (const ContactPoint& p : cr.points) total += p.force;
-    cr.total_force = total.norm();
-  }
-
-  // Walls: total normal reaction and pressure over the tow's footprint on the wall.
-  for (std::size_t w = 0; w < detector_.wall_specs().size(); ++w) {
-    const WallSpec& spec = detector_.wall_specs()[w];
-    WallResult wr;
-    wr.id = spec.id;
-    for (const Contact& c : contacts_)
-      if (c.kind == ContactKind::wall && c.b == static_cast<int>(w)) wr.force += c.force;
-    const auto [p1, p2] = cross_section_axes(spec.normal);
-    Eigen::Vector2d lo(INFINITY, INFINITY), hi(-INFINITY, -INFINITY);
-    for (const Fibre& f : fibres_)
-      for (const Eigen::Vector3d& x : {f.start, f.end}) {
-        const Eigen::Vector2d q(x.dot(p1), x.dot(p2));
-        lo = lo.cwiseMin((q.array() - f.radius).matrix());
-        hi = hi.cwiseMax((q.array() + f.radius).matrix());
-      }
-    wr.area = (hi - lo).prod();
-    wr.pressure = wr.area > 0.0 ? wr.force / wr.area : 0.0;
-    r.walls.push_back(wr);
-  }
+  r.contacts = contact_results(contacts_, fibres_, detector_, force_on_a_, u_a_, u_b_);
+  r.walls = wall_results(contacts_, fibres_, detector_.wall_specs());
   r.history = history_;
   r.wall_time_s = seconds_since(start);
   return r;

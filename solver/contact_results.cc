@@ -1,0 +1,71 @@
+#include "contact_results.h"
+
+#include <cmath>
+#include <map>
+#include <tuple>
+
+namespace fibrecheck {
+
+std::vector<ContactResult> contact_results(const std::vector<Contact>& contacts,
+                                           const std::vector<Fibre>& fibres,
+                                           const ContactDetector& detector,
+                                           const std::vector<Eigen::Vector3d>& force_on_a,
+                                           const std::vector<Eigen::Vector3d>& u_a,
+                                           const std::vector<Eigen::Vector3d>& u_b) {
+  std::vector<ContactResult> results;
+  std::map<std::tuple<int, int, int>, std::size_t> group;
+  for (std::size_t k = 0; k < contacts.size(); ++k) {
+    const Contact& c = contacts[k];
+    if (!(c.force > 0.0)) continue;
+    const auto key = std::make_tuple(static_cast<int>(c.kind), c.a, c.b);
+    auto it = group.find(key);
+    if (it == group.end()) {
+      ContactResult cr;
+      cr.fibres = {fibres[c.a].id, c.kind == ContactKind::wall ? detector.wall_specs()[c.b].id
+                                                                 : fibres[c.b].id};
+      cr.kind = to_string(c.kind);
+      it = group.emplace(key, results.size()).first;
+      results.push_back(cr);
+    }
+    ContactPoint p;
+    p.position = c.s_a;
+    const Eigen::Vector3d ac = fibres[c.a].point(c.s_a) + u_a[k];
+    p.point = c.kind == ContactKind::wall
+                  ? Eigen::Vector3d(ac - fibres[c.a].radius * c.normal)
+                  : Eigen::Vector3d(0.5 * (ac + fibres[c.b].point(c.s_b) + u_b[k]));
+    p.force = force_on_a[k];
+    results[it->second].points.push_back(p);
+  }
+  for (ContactResult& cr : results) {
+    Eigen::Vector3d total = Eigen::Vector3d::Zero();
+    for (const ContactPoint& p : cr.points) total += p.force;
+    cr.total_force = total.norm();
+  }
+  return results;
+}
+
+std::vector<WallResult> wall_results(const std::vector<Contact>& contacts,
+                                     const std::vector<Fibre>& fibres,
+                                     const std::vector<WallSpec>& walls) {
+  std::vector<WallResult> results;
+  for (std::size_t w = 0; w < walls.size(); ++w) {
+    WallResult wr;
+    wr.id = walls[w].id;
+    for (const Contact& c : contacts)
+      if (c.kind == ContactKind::wall && c.b == static_cast<int>(w)) wr.force += c.force;
+    const auto [p1, p2] = cross_section_axes(walls[w].normal);
+    Eigen::Vector2d lo(INFINITY, INFINITY), hi(-INFINITY, -INFINITY);
+    for (const Fibre& f : fibres)
+      for (const Eigen::Vector3d& x : {f.start, f.end}) {
+        const Eigen::Vector2d q(x.dot(p1), x.dot(p2));
+        lo = lo.cwiseMin((q.array() - f.radius).matrix());
+        hi = hi.cwiseMax((q.array() + f.radius).matrix());
+      }
+    wr.area = (hi - lo).prod();
+    wr.pressure = wr.area > 0.0 ? wr.force / wr.area : 0.0;
+    results.push_back(wr);
+  }
+  return results;
+}
+
+}  // namespace fibrecheck
