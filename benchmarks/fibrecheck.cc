@@ -13,6 +13,7 @@
 #include "generate_command.h"
 #include "solve_command.h"
 #ifdef FIBRECHECK_WITH_FEM
+#include "fem_command.h"
 #include "mesh_command.h"
 #endif
 
@@ -24,6 +25,7 @@ int main(int argc, char** argv) {
   fibrecheck::add_generate_command(app, exit_code);
 #ifdef FIBRECHECK_WITH_FEM
   fibrecheck::add_mesh_command(app, exit_code);
+  fibrecheck::add_fem_command(app, exit_code);
 #else
   app.add_subcommand("mesh", "(needs the build with -DFIBRECHECK_WITH_FEM=ON)")
       ->allow_extras()

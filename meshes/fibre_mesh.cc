@@ -84,6 +84,10 @@ std::vector<FibreStations> mesh_stations(const Scene& scene, const MeshOptions& 
     add_station(stations[c.a], c.s_a, true);
     add_station(stations[c.b], c.s_b, true);
   }
+  for (std::size_t i = 0; i < options.contact_stations.size() && i < stations.size(); ++i)
+    for (double s : options.contact_stations[i]) add_station(stations[i], s, true);
+  for (std::size_t i = 0; i < options.sample_stations.size() && i < stations.size(); ++i)
+    for (double s : options.sample_stations[i]) add_station(stations[i], s, false);
   for (FibreStations& f : stations) sort_unique(f);
   return stations;
 }

@@ -13,6 +13,9 @@ struct MeshOptions {
   double size_per_slice = 1.0;
   /// Elements near a contact point are this many times smaller.
   double contact_refinement = 4.0;
+  /// Further stations per fibre (fractions of its length), e.g. the contact points a solver found
+  /// on the deformed fibres (refined like contacts) and the result's sample positions.
+  std::vector<std::vector<double>> contact_stations, sample_stations;
 };
 
 /// The points of one fibre where the mesh must have nodes (fractions of its length from start):

@@ -114,7 +114,7 @@ struct BeamModel::Implementation {
   }
 
   /// The mixed form in both planes; uniform loads integrated, point loads at their nodes.
-  void assemble_system(const std::vector<NodalForce>& extra) {
+  void assemble_system(const std::vector<NodalForce>& extra, bool scene_loads) {
     const QGauss<1> quadrature(4);
     FEValues<1, 3> fe_values(fe, quadrature, update_values | update_gradients | update_JxW_values);
     const unsigned int n = fe.n_dofs_per_cell();
@@ -123,7 +123,7 @@ struct BeamModel::Implementation {
     std::vector<types::global_dof_index> dof_indices(n);
     std::vector<Eigen::Vector2d> q(fibres.size(), Eigen::Vector2d::Zero());
     for (const LoadSpec& load : scene.loads)
-      if (load.kind == LoadKind::distributed) {
+      if (scene_loads && load.kind == LoadKind::distributed) {
         const int f = scene.fibre_index(load.fibre);
         q[f] += Eigen::Vector2d(load.force.dot(fibres[f].e1), load.force.dot(fibres[f].e2));
       }
@@ -167,7 +167,8 @@ struct BeamModel::Implementation {
           system_rhs(it->second[kW[plane]]) -= p[plane];  // −Σ P ψ(a)
     };
     for (const LoadSpec& load : scene.loads)
-      if (load.kind == LoadKind::point) add_point_force(scene.fibre_index(load.fibre), load.position, load.force);
+      if (scene_loads && load.kind == LoadKind::point)
+        add_point_force(scene.fibre_index(load.fibre), load.position, load.force);
     for (const NodalForce& force : extra) add_point_force(force.fibre, force.s, force.force);
     system_rhs.compress(VectorOperation::add);
   }
@@ -186,9 +187,9 @@ BeamModel::BeamModel(const Scene& scene, const std::string& mesh_file)
 
 BeamModel::~BeamModel() = default;
 
-void BeamModel::run(const std::vector<NodalForce>& extra) {
-  impl_->setup_system();
-  impl_->assemble_system(extra);
+void BeamModel::run(const std::vector<NodalForce>& extra, bool scene_loads) {
+  if (impl_->dof_handler.n_dofs() == 0) impl_->setup_system();
+  impl_->assemble_system(extra, scene_loads);
   impl_->solve();
 }
 

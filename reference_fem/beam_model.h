@@ -34,8 +34,8 @@ class BeamModel {
   BeamModel(const Scene& scene, const std::string& mesh_file);
   ~BeamModel();
 
-  /// Solves under the scene's loads plus `extra` forces at mesh nodes.
-  void run(const std::vector<NodalForce>& extra = {});
+  /// Solves under `extra` forces at mesh nodes, plus the scene's own loads if `scene_loads`.
+  void run(const std::vector<NodalForce>& extra = {}, bool scene_loads = true);
 
   /// Displacement (mm) of fibre `fibre` at the mesh node nearest fraction `s`; throws if there is
   /// no node within 1e-9 of the length.

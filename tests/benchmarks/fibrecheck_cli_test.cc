@@ -165,6 +165,25 @@ TEST_F(Cli, MeshWritesGmshFilesAndRejectsBadScenes) {
   EXPECT_NE(bad.err.find("fibres[0].youngs_modulus"), std::string::npos) << bad.err;
   EXPECT_FALSE(fs::exists(dir_ + "bad.msh"));
 }
+
+TEST_F(Cli, FemWritesTheSameResultSchema) {
+  const Outcome ok = run("fem " + scene("two_fibres_crossing") + " --out " + dir_ + "f.json");
+  EXPECT_EQ(ok.code, 0) << ok.err;
+  const json fem = json::parse(slurp(dir_ + "f.json"));
+  run("solve " + scene("two_fibres_crossing") + " -q --out " + dir_ + "i.json");
+  const json iterative = json::parse(slurp(dir_ + "i.json"));
+  EXPECT_EQ(fem["solver"], "fem");
+  EXPECT_EQ(fem["status"], "converged");
+  for (auto it = iterative.begin(); it != iterative.end(); ++it) EXPECT_TRUE(fem.contains(it.key())) << it.key();
+  EXPECT_NEAR(fem["contacts"][0]["total_force"].get<double>(),
+              iterative["contacts"][0]["total_force"].get<double>(), 1e-8 * 1.5e-5);
+  json negative = crossing();
+  negative["fibres"][1]["radius"] = -1;
+  const Outcome bad = run("fem " + write("bad.json", negative) + " --out " + dir_ + "bad.json.out");
+  EXPECT_EQ(bad.code, 2);
+  EXPECT_NE(bad.err.find("fibres[1].radius"), std::string::npos) << bad.err;
+  EXPECT_FALSE(fs::exists(dir_ + "bad.json.out"));
+}
 #endif
 
 }  // namespace
