@@ -27,13 +27,14 @@ int main(int argc, char** argv) {
   fibrecheck::add_mesh_command(app, exit_code);
   fibrecheck::add_fem_command(app, exit_code);
 #else
-  app.add_subcommand("mesh", "(needs the build with -DFIBRECHECK_WITH_FEM=ON)")
-      ->allow_extras()
-      ->callback([&exit_code] {
-        std::cerr << "fibrecheck mesh: error: this build has no finite-element stack; configure "
-                     "with -DFIBRECHECK_WITH_FEM=ON\n";
-        exit_code = fibrecheck::kExitBadInput;
-      });
+  for (const char* name : {"mesh", "fem"})
+    app.add_subcommand(name, "(needs the build with -DFIBRECHECK_WITH_FEM=ON)")
+        ->allow_extras()
+        ->callback([&exit_code, name] {
+          std::cerr << "fibrecheck " << name << ": error: this build has no finite-element stack; "
+                       "configure with -DFIBRECHECK_WITH_FEM=ON\n";
+          exit_code = fibrecheck::kExitBadInput;
+        });
 #endif
   try {
     app.parse(argc, argv);
