@@ -14,6 +14,7 @@
 #include <deal.II/lac/petsc_sparse_matrix.h>
 #include <deal.II/lac/petsc_vector.h>
 #include <deal.II/lac/solver_control.h>
+#include <petscksp.h>
 
 #include <cmath>
 #include <fstream>
@@ -62,6 +63,13 @@ struct BeamModel::Implementation {
   AffineConstraints<double> constraints;
   PETScWrappers::SparseMatrix system_matrix;
   PETScWrappers::MPI::Vector solution, system_rhs;
+  bool matrix_assembled = false;
+  /// MUMPS factorisation of the system matrix, made once and reused for every load case.
+  KSP direct_solver = nullptr;
+
+  ~Implementation() {
+    if (direct_solver) KSPDestroy(&direct_solver);
+  }
   /// Per fibre: node fraction s → the four DoFs (w1, M1, w2, M2) of that vertex.
   std::vector<std::map<double, std::array<types::global_dof_index, 4>>> nodes;
 
@@ -127,7 +135,8 @@ struct BeamModel::Implementation {
         const int f = scene.fibre_index(load.fibre);
         q[f] += Eigen::Vector2d(load.force.dot(fibres[f].e1), load.force.dot(fibres[f].e2));
       }
-    system_matrix = 0;
+    // The matrix does not depend on the loads: assembled once, only the right-hand side each time.
+    const bool with_matrix = !matrix_assembled;
     system_rhs = 0;
     for (const auto& cell : dof_handler.active_cell_iterators()) {
       const int f = fibre_of_material.at(cell->material_id());
@@ -153,9 +162,13 @@ struct BeamModel::Implementation {
             if (ci == kW[plane]) cell_rhs(i) -= q[f][plane] * fe_values.shape_value(i, k) * fe_values.JxW(k);
         }
       cell->get_dof_indices(dof_indices);
-      constraints.distribute_local_to_global(cell_matrix, cell_rhs, dof_indices, system_matrix, system_rhs);
+      if (with_matrix)
+        constraints.distribute_local_to_global(cell_matrix, cell_rhs, dof_indices, system_matrix, system_rhs);
+      else
+        constraints.distribute_local_to_global(cell_rhs, dof_indices, system_rhs);
     }
-    system_matrix.compress(VectorOperation::add);
+    if (with_matrix) system_matrix.compress(VectorOperation::add);
+    matrix_assembled = true;
     auto add_point_force = [&](int f, double s, const Eigen::Vector3d& force) {
       const auto& table = nodes[f];
       auto it = table.lower_bound(s - 1e-9);
@@ -173,11 +186,20 @@ struct BeamModel::Implementation {
     system_rhs.compress(VectorOperation::add);
   }
 
-  /// The symmetric indefinite system by MUMPS (a direct solve: no tolerance in the answer).
+  /// The symmetric indefinite system by MUMPS (a direct solve: no tolerance in the answer),
+  /// factorised on the first call and reused for every later load case.
   void solve() {
-    SolverControl control(1, 0.0);
-    PETScWrappers::SparseDirectMUMPS mumps(control, MPI_COMM_SELF);
-    mumps.solve(system_matrix, solution, system_rhs);
+    if (!direct_solver) {
+      KSPCreate(PETSC_COMM_SELF, &direct_solver);
+      KSPSetOperators(direct_solver, system_matrix, system_matrix);
+      KSPSetType(direct_solver, KSPPREONLY);
+      PC pc;
+      KSPGetPC(direct_solver, &pc);
+      PCSetType(pc, PCLU);
+      PCFactorSetMatSolverType(pc, MATSOLVERMUMPS);
+      KSPSetUp(direct_solver);
+    }
+    KSPSolve(direct_solver, system_rhs, solution);
     constraints.distribute(solution);
   }
 };
