@@ -2,6 +2,7 @@
 
 // Scenes with known answers, built in code so that tests can vary their parameters.
 
+#include <algorithm>
 #include <cmath>
 
 #include "scene.h"
@@ -16,6 +17,13 @@ inline double bending_stiffness(double radius, double modulus) {
 inline double compliance(double a, double L, double EI) {
   const double b = L - a;
   return a * a * b * b / (3.0 * EI * L);
+}
+
+/// Deflection at x of a simply supported beam of length 1 mm under a unit load at a, both in mm:
+/// Eq. 4.13 with the nearer end chosen so it holds on either side (Maxwell's reciprocity).
+inline double unit_load_deflection(double a, double x, double EI) {
+  const double lo = std::min(a, x), hi = std::max(a, x);
+  return (1 - hi) * lo * (1 - lo * lo - (1 - hi) * (1 - hi)) / (6 * EI);
 }
 
 inline FibreSpec fibre(const std::string& id, Eigen::Vector3d start, Eigen::Vector3d end,

@@ -68,8 +68,7 @@ TEST(ReferenceSolver, SmallLcpMatchesEnumeration) {
   Eigen::Matrix3d W;
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j) {
-      const double a = std::min(xs[i], xs[j]), x = std::max(xs[i], xs[j]);
-      W(i, j) = (1 - x) * a * (1 - a * a - (1 - x) * (1 - x)) / (6 * EI);
+      W(i, j) = testing::unit_load_deflection(xs[i], xs[j], EI);
       if (i == j) W(i, j) += compliance(0.5, 1.0, bending_stiffness(r, E * (1 + i)));
     }
   // C1 stays clear; C0 and C2 push: solve the 2×2 system of the active pair.

@@ -146,8 +146,7 @@ TEST(GroundTruth, StiffFibrePressingOthers) {
     Eigen::Matrix3d W;
     for (int i = 0; i < 3; ++i)
       for (int j = 0; j < 3; ++j) {
-        const double a = std::min(ys[i], ys[j]) + 0.5, x = std::max(ys[i], ys[j]) + 0.5;
-        W(i, j) = (1 - x) * a * (1 - a * a - (1 - x) * (1 - x)) / (6 * EIs);  // Eq. 4.13, L = 1
+        W(i, j) = testing::unit_load_deflection(ys[i] + 0.5, ys[j] + 0.5, EIs);
         if (i == j) W(i, j) += compliance(0.5, 1.0, EI);
       }
     const Eigen::Vector3d P = W.ldlt().solve(Eigen::Vector3d(overlaps[0], overlaps[1], overlaps[2]));
@@ -273,8 +272,7 @@ TEST(GroundTruth, SmallLcpMatchesEnumeration) {
   Eigen::Matrix4d W;
   for (int i = 0; i < 4; ++i)
     for (int j = 0; j < 4; ++j) {
-      const double a = std::min(xs[i], xs[j]), x = std::max(xs[i], xs[j]);
-      W(i, j) = (1 - x) * a * (1 - a * a - (1 - x) * (1 - x)) / (6 * EI);
+      W(i, j) = testing::unit_load_deflection(xs[i], xs[j], EI);
       if (i == j) W(i, j) += compliance(0.5, 1.0, bending_stiffness(r, E * (1 + i)));
     }
   const Eigen::Vector4d d(overlaps[0], overlaps[1], overlaps[2], overlaps[3]);
