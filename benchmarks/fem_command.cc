@@ -20,7 +20,8 @@ void add_fem_command(CLI::App& app, int& exit_code) {
     bool quiet = false;
   };
   auto args = std::make_shared<Arguments>();
-  CLI::App* fem = app.add_subcommand("fem", "Solve a scene with the implicit finite-element reference");
+  CLI::App* fem =
+      app.add_subcommand("fem", "Solve a scene with the implicit finite-element reference");
   fem->add_option("scene", args->scene, "Scene file (JSON)")->required();
   fem->add_option("--out", args->out, "Result file (JSON)");
   fem->add_option("--slices", args->slices, "Cross-sections n (overrides contact.slices)")

@@ -31,7 +31,8 @@ int main(int argc, char** argv) {
     app.add_subcommand(name, "(needs the build with -DFIBRECHECK_WITH_FEM=ON)")
         ->allow_extras()
         ->callback([&exit_code, name] {
-          std::cerr << "fibrecheck " << name << ": error: this build has no finite-element stack; "
+          std::cerr << "fibrecheck " << name
+                    << ": error: this build has no finite-element stack; "
                        "configure with -DFIBRECHECK_WITH_FEM=ON\n";
           exit_code = fibrecheck::kExitBadInput;
         });

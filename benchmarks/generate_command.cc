@@ -18,7 +18,8 @@ void add_generate_command(CLI::App& app, int& exit_code) {
   tow->add_option("--fibres", o->fibres, "Number of fibres")->capture_default_str();
   tow->add_option("--slices", o->slices, "Cross-sections n")->capture_default_str();
   tow->add_option("--seed", o->seed, "Random seed (same seed, same tow)")->capture_default_str();
-  tow->add_option("--volume-fraction", o->volume_fraction, "Fibre volume fraction before compaction")
+  tow->add_option("--volume-fraction", o->volume_fraction,
+                  "Fibre volume fraction before compaction")
       ->capture_default_str();
   tow->add_option("--misalignment", o->misalignment_deg, "Largest misalignment angle, degrees")
       ->capture_default_str();

@@ -16,7 +16,8 @@ void add_mesh_command(CLI::App& app, int& exit_code) {
     int slices = 0;
   };
   auto args = std::make_shared<Arguments>();
-  CLI::App* mesh = app.add_subcommand("mesh", "Write the Gmsh mesh of a scene for the reference model");
+  CLI::App* mesh =
+      app.add_subcommand("mesh", "Write the Gmsh mesh of a scene for the reference model");
   mesh->add_option("scene", args->scene, "Scene file (JSON)")->required();
   mesh->add_option("--out", args->out, "Mesh file (.msh)")->required();
   mesh->add_option("--geo", args->geo, "Also write the geometry as a Gmsh script (.geo)");

@@ -89,7 +89,8 @@ int run_solve(const SolveArguments& args) {
     for (const std::string& path : args.scenes) {
       Scene scene = read_scene(path);
       if (args.slices > 0) scene.contact.slices = args.slices;
-      if (!args.rule.empty()) scene.solver.rule = parse_update_rule(args.rule, "command line", "--rule");
+      if (!args.rule.empty())
+        scene.solver.rule = parse_update_rule(args.rule, "command line", "--rule");
       if (args.c > 0.0) scene.solver.c = args.c;
       validate_scene(scene);
       SolverOptions o = SolverOptions::from_scene(scene);

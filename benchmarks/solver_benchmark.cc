@@ -23,7 +23,8 @@ std::vector<BeamLoad> random_loads(int k, std::mt19937_64& rng) {
   std::uniform_real_distribution<double> position(0.0, kLength), force(-1e-4, 1e-4);
   std::vector<BeamLoad> loads(k);
   for (BeamLoad& l : loads) l = {position(rng), force(rng)};
-  std::sort(loads.begin(), loads.end(), [](const BeamLoad& a, const BeamLoad& b) { return a.a < b.a; });
+  std::sort(loads.begin(), loads.end(),
+            [](const BeamLoad& a, const BeamLoad& b) { return a.a < b.a; });
   return loads;
 }
 
@@ -58,7 +59,8 @@ void BM_SuperpositionNaive(benchmark::State& state) {
   for (auto _ : state) {
     for (int i = 0; i < k; ++i) {
       double sum = 0.0;
-      for (const BeamLoad& l : loads) sum += point_load_deflection(l.P, l.a, x[i], kLength, kBendingStiffness);
+      for (const BeamLoad& l : loads)
+        sum += point_load_deflection(l.P, l.a, x[i], kLength, kBendingStiffness);
       v[i] = sum;
     }
     benchmark::DoNotOptimize(v.data());
@@ -92,7 +94,7 @@ void slice_centres(int n, std::vector<Eigen::Vector2d>& centres, std::vector<dou
 }
 
 using PairFinder = void (*)(const std::vector<Eigen::Vector2d>&, const std::vector<double>&, double,
-                           std::vector<std::pair<int, int>>&);
+                            std::vector<std::pair<int, int>>&);
 
 // One slice's contact pairs: by the grid broad phase (slice_pairs) or all pairs (slice_pairs_all).
 template <PairFinder find>
@@ -108,7 +110,10 @@ void BM_SlicePairs(benchmark::State& state) {
   state.SetComplexityN(state.range(0));
 }
 BENCHMARK_TEMPLATE(BM_SlicePairs, slice_pairs)->RangeMultiplier(4)->Range(64, 16384)->Complexity();
-BENCHMARK_TEMPLATE(BM_SlicePairs, slice_pairs_all)->RangeMultiplier(4)->Range(64, 4096)->Complexity();
+BENCHMARK_TEMPLATE(BM_SlicePairs, slice_pairs_all)
+    ->RangeMultiplier(4)
+    ->Range(64, 4096)
+    ->Complexity();
 
 // A generated, compacted tow (default options, 100 slices) under the accelerated rule: the time of
 // one iteration as the tow grows, without the set-up (detection, the estimate of λmax(W)). Two runs
@@ -135,10 +140,12 @@ void BM_TowIteration(benchmark::State& state) {
     const Result short_run = solve_iteratively(scene, solver);
     solver.max_iterations = 2200;
     const Result long_run = solve_iteratively(scene, solver);
-    state.counters["ms_per_iteration"] = 1e3 * (long_run.wall_time_s - short_run.wall_time_s) /
-                                         static_cast<double>(long_run.iterations - short_run.iterations);
+    state.counters["ms_per_iteration"] =
+        1e3 * (long_run.wall_time_s - short_run.wall_time_s) /
+        static_cast<double>(long_run.iterations - short_run.iterations);
     double contacts = 0;
-    for (const ContactResult& c : long_run.contacts) contacts += static_cast<double>(c.points.size());
+    for (const ContactResult& c : long_run.contacts)
+      contacts += static_cast<double>(c.points.size());
     state.counters["contacts"] = contacts;
   }
 }

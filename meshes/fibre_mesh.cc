@@ -24,7 +24,8 @@ void add_station(FibreStations& f, double s, bool fine) {
 void sort_unique(FibreStations& f) {
   std::vector<std::size_t> order(f.s.size());
   for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
-  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return f.s[a] < f.s[b]; });
+  std::sort(order.begin(), order.end(),
+            [&](std::size_t a, std::size_t b) { return f.s[a] < f.s[b]; });
   std::vector<double> s;
   std::vector<char> fine;
   for (std::size_t i : order) {
@@ -76,7 +77,8 @@ std::vector<FibreStations> mesh_stations(const Scene& scene, const MeshOptions& 
     }
   }
   for (const LoadSpec& load : scene.loads)
-    if (load.kind == LoadKind::point) add_station(stations[scene.fibre_index(load.fibre)], load.position, false);
+    if (load.kind == LoadKind::point)
+      add_station(stations[scene.fibre_index(load.fibre)], load.position, false);
   std::vector<std::vector<Eigen::Vector3d>> undeformed(
       fibres.size(), std::vector<Eigen::Vector3d>(detector.grid().size(), Eigen::Vector3d::Zero()));
   for (const Contact& c : detector.detect(undeformed)) {
@@ -142,14 +144,16 @@ std::string geo_script(const Scene& scene, const MeshOptions& options) {
     out << "// fibre " << spec.id << "\n";
     for (std::size_t j = 0; j < f.s.size(); ++j) {
       const Eigen::Vector3d x = spec.start + f.s[j] * (spec.end - spec.start);
-      out << "Point(" << ++point << ") = {" << x[0] << ", " << x[1] << ", " << x[2] << ", " << size[j]
-          << "};\n";
+      out << "Point(" << ++point << ") = {" << x[0] << ", " << x[1] << ", " << x[2] << ", "
+          << size[j] << "};\n";
     }
-    for (int p = first_point; p < point; ++p) out << "Line(" << ++line << ") = {" << p << ", " << p + 1 << "};\n";
+    for (int p = first_point; p < point; ++p)
+      out << "Line(" << ++line << ") = {" << p << ", " << p + 1 << "};\n";
     out << "Physical Curve(\"" << spec.id << "\", " << ++group << ") = {";
     for (int l = first_line; l <= line; ++l) out << l << (l < line ? ", " : "");
     out << "};\n";
-    out << "Physical Point(\"" << spec.id << "/start\", " << ++group << ") = {" << first_point << "};\n";
+    out << "Physical Point(\"" << spec.id << "/start\", " << ++group << ") = {" << first_point
+        << "};\n";
     out << "Physical Point(\"" << spec.id << "/end\", " << ++group << ") = {" << point << "};\n";
   }
   return out.str();

@@ -79,7 +79,8 @@ struct BeamModel::Implementation {
     const auto tags = curve_tags(mesh_file);
     for (std::size_t i = 0; i < fibres.size(); ++i) {
       auto it = tags.find(fibres[i].id);
-      if (it == tags.end()) throw InputError(mesh_file, fibres[i].id, "no physical curve for this fibre");
+      if (it == tags.end())
+        throw InputError(mesh_file, fibres[i].id, "no physical curve for this fibre");
       fibre_of_material[static_cast<types::material_id>(it->second)] = static_cast<int>(i);
     }
     make_grid(mesh_file);
@@ -154,16 +155,19 @@ struct BeamModel::Implementation {
               if (ci == kM[plane] && cj == kM[plane])  // ∫ M φ / EI
                 value += fe_values.shape_value(i, k) * fe_values.shape_value(j, k) / EI;
               if ((ci == kM[plane] && cj == kW[plane]) || (ci == kW[plane] && cj == kM[plane]))
-                value -= fe_values.shape_grad(i, k) * fe_values.shape_grad(j, k);  // −∫ w'φ', −∫ M'ψ'
+                value -=
+                    fe_values.shape_grad(i, k) * fe_values.shape_grad(j, k);  // −∫ w'φ', −∫ M'ψ'
             }
             cell_matrix(i, j) += value * fe_values.JxW(k);
           }
           for (int plane = 0; plane < 2; ++plane)
-            if (ci == kW[plane]) cell_rhs(i) -= q[f][plane] * fe_values.shape_value(i, k) * fe_values.JxW(k);
+            if (ci == kW[plane])
+              cell_rhs(i) -= q[f][plane] * fe_values.shape_value(i, k) * fe_values.JxW(k);
         }
       cell->get_dof_indices(dof_indices);
       if (with_matrix)
-        constraints.distribute_local_to_global(cell_matrix, cell_rhs, dof_indices, system_matrix, system_rhs);
+        constraints.distribute_local_to_global(cell_matrix, cell_rhs, dof_indices, system_matrix,
+                                               system_rhs);
       else
         constraints.distribute_local_to_global(cell_rhs, dof_indices, system_rhs);
     }
@@ -173,7 +177,8 @@ struct BeamModel::Implementation {
       const auto& table = nodes[f];
       auto it = table.lower_bound(s - 1e-9);
       if (it == table.end() || std::fabs(it->first - s) > 1e-9)
-        throw std::runtime_error("no mesh node at s = " + std::to_string(s) + " of fibre " + fibres[f].id);
+        throw std::runtime_error("no mesh node at s = " + std::to_string(s) + " of fibre " +
+                                 fibres[f].id);
       const Eigen::Vector2d p(force.dot(fibres[f].e1), force.dot(fibres[f].e2));
       for (int plane = 0; plane < 2; ++plane)
         if (!constraints.is_constrained(it->second[kW[plane]]))
@@ -224,6 +229,8 @@ Eigen::Vector3d BeamModel::displacement(int fibre, double s) const {
   return impl_->solution(it->second[kW[0]]) * f.e1 + impl_->solution(it->second[kW[1]]) * f.e2;
 }
 
-std::size_t BeamModel::unknowns() const { return impl_->dof_handler.n_dofs(); }
+std::size_t BeamModel::unknowns() const {
+  return impl_->dof_handler.n_dofs();
+}
 
 }  // namespace fibrecheck

@@ -1,11 +1,12 @@
 #include "reference_solver.h"
 
+#include <unistd.h>
+
 #include <Eigen/Dense>
 #include <algorithm>
 #include <chrono>
 #include <filesystem>
 #include <set>
-#include <unistd.h>
 
 #include "beam_model.h"
 #include "contact_detection.h"
@@ -112,7 +113,8 @@ Result solve_reference(const Scene& scene, const ReferenceOptions& options) {
     gather();
     std::vector<std::vector<Eigen::Vector3d>> grid(fibres.size());
     for (std::size_t f = 0; f < fibres.size(); ++f)
-      superposition.fibre_field(static_cast<int>(f), contacts, force_on_a, true, detector.grid(), grid[f]);
+      superposition.fibre_field(static_cast<int>(f), contacts, force_on_a, true, detector.grid(),
+                                grid[f]);
     std::vector<Contact> found = detector.detect(grid);
     std::map<std::uint64_t, const Contact*> previous;
     for (const Contact& c : contacts) previous[c.key()] = &c;
@@ -165,9 +167,11 @@ Result solve_reference(const Scene& scene, const ReferenceOptions& options) {
         return fibres[c.a].radius - c.normal.dot(ac - detector.wall_specs()[c.b].point);
       Eigen::Vector3d difference = fibres[c.b].point(c.s_b) + model->displacement(c.b, c.s_b) - ac;
       if (c.kind == ContactKind::line)
-        difference -= difference.dot(scene.contact.axis.normalized()) * scene.contact.axis.normalized();
+        difference -=
+            difference.dot(scene.contact.axis.normalized()) * scene.contact.axis.normalized();
       const double radii = fibres[c.a].radius + fibres[c.b].radius;
-      if (update_normal && c.force <= 0.0 && difference.norm() > 0.5 * radii) c.normal = difference.normalized();
+      if (update_normal && c.force <= 0.0 && difference.norm() > 0.5 * radii)
+        c.normal = difference.normalized();
       return radii - c.normal.dot(difference);
     };
     for (Eigen::Index k = 0; k < n; ++k) d0[k] = overlap(contacts[k], false);
@@ -176,14 +180,16 @@ Result solve_reference(const Scene& scene, const ReferenceOptions& options) {
     Eigen::MatrixXd W(n, n);
     for (Eigen::Index k = 0; k < n; ++k) {
       const Contact& c = contacts[k];
-      std::vector<NodalForce> pair = {{c.a, c.s_a, (c.kind == ContactKind::wall ? 1.0 : -1.0) * c.normal}};
+      std::vector<NodalForce> pair = {
+          {c.a, c.s_a, (c.kind == ContactKind::wall ? 1.0 : -1.0) * c.normal}};
       if (c.kind != ContactKind::wall) pair.push_back({c.b, c.s_b, c.normal});
       model->run(pair, false);
       for (Eigen::Index j = 0; j < n; ++j) {
         const Contact& cj = contacts[j];
         const Eigen::Vector3d ua = model->displacement(cj.a, cj.s_a);
-        W(j, k) = cj.kind == ContactKind::wall ? cj.normal.dot(ua)
-                                               : cj.normal.dot(model->displacement(cj.b, cj.s_b) - ua);
+        W(j, k) = cj.kind == ContactKind::wall
+                      ? cj.normal.dot(ua)
+                      : cj.normal.dot(model->displacement(cj.b, cj.s_b) - ua);
       }
     }
     Eigen::VectorXd P;
@@ -232,7 +238,8 @@ Result solve_reference(const Scene& scene, const ReferenceOptions& options) {
     } else {
       Eigen::Vector3d difference = fibres[c.b].point(c.s_b) + u_b[k] - ac;
       if (c.kind == ContactKind::line)
-        difference -= difference.dot(scene.contact.axis.normalized()) * scene.contact.axis.normalized();
+        difference -=
+            difference.dot(scene.contact.axis.normalized()) * scene.contact.axis.normalized();
       d = fibres[c.a].radius + fibres[c.b].radius - c.normal.dot(difference);
     }
     c.overlap = d;
@@ -243,7 +250,8 @@ Result solve_reference(const Scene& scene, const ReferenceOptions& options) {
     FibreResult fr;
     fr.id = fibres[f].id;
     for (double s : sample_s)
-      fr.displacement.push_back(model ? model->displacement(static_cast<int>(f), s) : Eigen::Vector3d::Zero());
+      fr.displacement.push_back(model ? model->displacement(static_cast<int>(f), s)
+                                      : Eigen::Vector3d::Zero());
     r.fibres.push_back(std::move(fr));
   }
   r.contacts = contact_results(contacts, fibres, detector, force_on_a, u_a, u_b);

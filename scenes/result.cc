@@ -13,9 +13,13 @@ using nlohmann::json;
 
 namespace {
 
-json vec(const Eigen::Vector3d& v) { return json::array({v[0], v[1], v[2]}); }
+json vec(const Eigen::Vector3d& v) {
+  return json::array({v[0], v[1], v[2]});
+}
 
-Eigen::Vector3d to_vec(const json& j) { return {j.at(0).get<double>(), j.at(1).get<double>(), j.at(2).get<double>()}; }
+Eigen::Vector3d to_vec(const json& j) {
+  return {j.at(0).get<double>(), j.at(1).get<double>(), j.at(2).get<double>()};
+}
 
 }  // namespace
 
@@ -48,7 +52,8 @@ json result_to_json(const Result& r) {
   for (const ContactResult& c : r.contacts) {
     json points = json::array();
     for (const ContactPoint& p : c.points)
-      points.push_back({{"position", p.position}, {"point", vec(p.point)}, {"force", vec(p.force)}});
+      points.push_back(
+          {{"position", p.position}, {"point", vec(p.point)}, {"force", vec(p.force)}});
     j["contacts"].push_back({{"fibres", {c.fibres[0], c.fibres[1]}},
                              {"kind", c.kind},
                              {"total_force", c.total_force},
@@ -94,7 +99,8 @@ Result result_from_json(const json& j, const std::string& source) {
     }
     for (const json& c : j.at("contacts")) {
       ContactResult cr;
-      cr.fibres = {c.at("fibres").at(0).get<std::string>(), c.at("fibres").at(1).get<std::string>()};
+      cr.fibres = {c.at("fibres").at(0).get<std::string>(),
+                   c.at("fibres").at(1).get<std::string>()};
       cr.kind = c.at("kind").get<std::string>();
       cr.total_force = c.at("total_force").get<double>();
       for (const json& p : c.at("points")) {

@@ -64,7 +64,8 @@ class ObjectReader {
     if (value.is_number_integer()) return value.get<long>();
     if (value.is_number_float()) {
       const double x = value.get<double>();
-      if (std::isfinite(x) && x == std::floor(x) && std::fabs(x) < 9e15) return static_cast<long>(x);
+      if (std::isfinite(x) && x == std::floor(x) && std::fabs(x) < 9e15)
+        return static_cast<long>(x);
     }
     fail(field(key), "must be a whole number, got " + value.dump());
   }
@@ -157,9 +158,8 @@ LoadSpec read_load(const json& node, const std::string& path, const std::string&
     load.kind = LoadKind::point;
     load.position = r.number("position", 0.5);
     if (load.position < 0.0 || load.position > 1.0)
-      r.fail(r.field("position"),
-             "must lie in [0, 1] (fraction of the fibre's length), got " +
-                 json(load.position).dump());
+      r.fail(r.field("position"), "must lie in [0, 1] (fraction of the fibre's length), got " +
+                                      json(load.position).dump());
     load.force = r.vector3("force");
   } else if (kind == "distributed") {
     load.kind = LoadKind::distributed;
@@ -201,14 +201,19 @@ double Scene::overlap_tolerance() const {
 
 const char* to_string(UpdateRule rule) {
   switch (rule) {
-    case UpdateRule::seed: return "seed";
-    case UpdateRule::automatic: return "auto";
-    case UpdateRule::accelerated: return "accelerated";
+    case UpdateRule::seed:
+      return "seed";
+    case UpdateRule::automatic:
+      return "auto";
+    case UpdateRule::accelerated:
+      return "accelerated";
   }
   return "?";
 }
 
-const char* to_string(LoadKind kind) { return kind == LoadKind::point ? "point" : "distributed"; }
+const char* to_string(LoadKind kind) {
+  return kind == LoadKind::point ? "point" : "distributed";
+}
 
 UpdateRule parse_update_rule(const std::string& text, const std::string& file,
                              const std::string& field) {
@@ -265,8 +270,8 @@ Scene scene_from_json(const json& document, const std::string& source) {
     ContactSettings& c = scene.contact;
     const long slices = r.integer("slices", c.slices);
     if (slices < 1 || slices > 1000000)
-      r.fail(r.field("slices"), "must be a whole number from 1 to 1000000, got " +
-                                    std::to_string(slices));
+      r.fail(r.field("slices"),
+             "must be a whole number from 1 to 1000000, got " + std::to_string(slices));
     c.slices = static_cast<int>(slices);
     c.axis = r.vector3("axis", c.axis);
     if (!(c.axis.norm() > 0.0)) r.fail(r.field("axis"), "must not be the zero vector");
@@ -319,8 +324,7 @@ void validate_scene(const Scene& scene) {
   const std::string& file = scene.source;
   if (scene.solver.rule == UpdateRule::seed && !scene.solver.c)
     throw InputError(file, "solver.c", "is required by rule \"seed\" (the step c of P' = P + c·d)");
-  if (scene.contact.slices < 1)
-    throw InputError(file, "contact.slices", "must be at least 1");
+  if (scene.contact.slices < 1) throw InputError(file, "contact.slices", "must be at least 1");
   if (scene.solver.c && !(*scene.solver.c > 0.0 && std::isfinite(*scene.solver.c)))
     throw InputError(file, "solver.c", "must be a positive finite number");
   if (scene.solver.max_iterations < 1)
@@ -391,10 +395,10 @@ Scene read_scene(const std::string& path) {
   json document;
   ParsePath where;
   try {
-    document = json::parse(buffer.str(), [&where](int depth, json::parse_event_t event,
-                                                  json& parsed) {
-      return where.on_event(depth, event, parsed);
-    });
+    document =
+        json::parse(buffer.str(), [&where](int depth, json::parse_event_t event, json& parsed) {
+          return where.on_event(depth, event, parsed);
+        });
   } catch (const json::exception& e) {
     std::string reason = e.what();
     const auto bracket = reason.find("] ");
@@ -405,7 +409,9 @@ Scene read_scene(const std::string& path) {
 }
 
 namespace {
-json vec(const Eigen::Vector3d& v) { return json::array({v[0], v[1], v[2]}); }
+json vec(const Eigen::Vector3d& v) {
+  return json::array({v[0], v[1], v[2]});
+}
 }  // namespace
 
 json scene_to_json(const Scene& scene) {
@@ -436,14 +442,14 @@ json scene_to_json(const Scene& scene) {
                   {"axis", vec(scene.contact.axis)},
                   {"friction", scene.contact.friction},
                   {"parallel_angle_deg", scene.contact.parallel_angle_deg}};
-  j["solver"] = {{"rule", to_string(scene.solver.rule)},
-                 {"c", scene.solver.c ? json(*scene.solver.c) : json(nullptr)},
-                 {"overlap_tolerance", scene.solver.overlap_tolerance
-                                           ? json(*scene.solver.overlap_tolerance)
-                                           : json(nullptr)},
-                 {"energy_tolerance", scene.solver.energy_tolerance},
-                 {"energy_window", scene.solver.energy_window},
-                 {"max_iterations", scene.solver.max_iterations}};
+  j["solver"] = {
+      {"rule", to_string(scene.solver.rule)},
+      {"c", scene.solver.c ? json(*scene.solver.c) : json(nullptr)},
+      {"overlap_tolerance",
+       scene.solver.overlap_tolerance ? json(*scene.solver.overlap_tolerance) : json(nullptr)},
+      {"energy_tolerance", scene.solver.energy_tolerance},
+      {"energy_window", scene.solver.energy_window},
+      {"max_iterations", scene.solver.max_iterations}};
   j["output"] = {{"samples", scene.output.samples}};
   return j;
 }

@@ -37,7 +37,7 @@ struct WallSpec {
 
 /// Contact detection (seed §4.3.3). All defaults of the scene format live in these initialisers.
 struct ContactSettings {
-  int slices = 50;                                 ///< cross-sections n along the tow axis
+  int slices = 50;                                  ///< cross-sections n along the tow axis
   Eigen::Vector3d axis = Eigen::Vector3d::UnitX();  ///< tow axis (unit after reading)
   double friction = 0.0;                            ///< Coulomb coefficient μ (Eq. 4.31)
   /// Fibres within this angle of the tow axis are tow fibres: pairs of them touch along lines and

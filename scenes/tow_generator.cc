@@ -12,7 +12,9 @@ namespace fibrecheck {
 namespace {
 
 /// Uniform in [0, 1) from the raw 64-bit stream: the same numbers on every platform.
-double uniform(std::mt19937_64& rng) { return static_cast<double>(rng() >> 11) * 0x1.0p-53; }
+double uniform(std::mt19937_64& rng) {
+  return static_cast<double>(rng() >> 11) * 0x1.0p-53;
+}
 
 struct Placed {
   Eigen::Vector2d y0, y1;  ///< (y, z) at x = 0 and x = L
@@ -95,7 +97,8 @@ Scene generate_tow(const TowOptions& o) {
     return static_cast<long>(std::floor(p[1] / cell)) * columns +
            static_cast<long>(std::floor(p[0] / cell));
   };
-  for (std::size_t i = 0; i < sites.size(); ++i) site_grid[key_of(sites[i])].push_back(static_cast<int>(i));
+  for (std::size_t i = 0; i < sites.size(); ++i)
+    site_grid[key_of(sites[i])].push_back(static_cast<int>(i));
   auto sites_near = [&](const Eigen::Vector2d& p, double distance, std::vector<int>& out) {
     out.clear();
     const long cx = static_cast<long>(std::floor(p[0] / cell));

@@ -7,10 +7,10 @@
 namespace fibrecheck {
 
 /// A random tow of nearly parallel, slightly misaligned straight fibres along x (DESIGN §2, "Tows
-/// and well-posedness"). Both supports of every fibre sit on sites of one hexagonal lattice (spacing
-/// ≥ 2r(1 + clearance)/F) in a square cross-section; a fibre is misaligned by moving its far
-/// support to a vacant site within L·tan(θ), kept only if the fibre then overlaps no other fibre
-/// anywhere along its length. The cross-section is then compacted by F = `compaction`: every
+/// and well-posedness"). Both supports of every fibre sit on sites of one hexagonal lattice
+/// (spacing ≥ 2r(1 + clearance)/F) in a square cross-section; a fibre is misaligned by moving its
+/// far support to a vacant site within L·tan(θ), kept only if the fibre then overlaps no other
+/// fibre anywhere along its length. The cross-section is then compacted by F = `compaction`: every
 /// position scales about the centre, supports included, and four walls bound the compacted
 /// section. Supports therefore stay clear of each other and of the walls; the overlaps arise where
 /// misaligned fibres pass between their neighbours, are shallow (at most 2r(1 − F)), and the

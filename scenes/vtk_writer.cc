@@ -12,7 +12,8 @@ void write_vectors(std::ostringstream& out, const char* name,
                    const std::vector<Eigen::Vector3d>& values) {
   out << "        <DataArray type=\"Float64\" Name=\"" << name
       << "\" NumberOfComponents=\"3\" format=\"ascii\">\n";
-  for (const Eigen::Vector3d& v : values) out << "          " << v[0] << " " << v[1] << " " << v[2] << "\n";
+  for (const Eigen::Vector3d& v : values)
+    out << "          " << v[0] << " " << v[1] << " " << v[2] << "\n";
   out << "        </DataArray>\n";
 }
 

@@ -7,10 +7,13 @@ namespace fibrecheck {
 
 namespace {
 
-double clamp01(double x) { return std::min(1.0, std::max(0.0, x)); }
+double clamp01(double x) {
+  return std::min(1.0, std::max(0.0, x));
+}
 
-ClosestPoints finish(const Eigen::Vector3d& a1, const Eigen::Vector3d& da, const Eigen::Vector3d& b1,
-                     const Eigen::Vector3d& db, double mu_a, double mu_b, bool parallel) {
+ClosestPoints finish(const Eigen::Vector3d& a1, const Eigen::Vector3d& da,
+                     const Eigen::Vector3d& b1, const Eigen::Vector3d& db, double mu_a, double mu_b,
+                     bool parallel) {
   ClosestPoints r;
   r.mu_a = mu_a;
   r.mu_b = mu_b;
@@ -45,8 +48,8 @@ ClosestPoints segment_closest_points(const Eigen::Ref<const Eigen::Vector3d>& a1
   const double denominator = aa * bb - ab * ab;
   if (denominator <= 1e-14 * aa * bb) {
     // Parallel: project B's ends onto A and take the middle of the common stretch.
-    const double t1 = -wa / aa;             // B1 on A
-    const double t2 = (ab - wa) / aa;       // B2 on A
+    const double t1 = -wa / aa;        // B1 on A
+    const double t2 = (ab - wa) / aa;  // B2 on A
     const double lo = std::max(0.0, std::min(t1, t2));
     const double hi = std::min(1.0, std::max(t1, t2));
     const double mu_a = lo <= hi ? 0.5 * (lo + hi) : (std::max(t1, t2) < 0.0 ? 0.0 : 1.0);

@@ -26,11 +26,11 @@ struct Contact {
   double s_a = 0;  ///< fraction of fibre A's length
   double s_b = 0;  ///< fraction of fibre B's length (unused for walls)
   Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();
-  double overlap = 0;      ///< d, mm
-  double force = 0;        ///< P ≥ 0, N
+  double overlap = 0;                                  ///< d, mm
+  double force = 0;                                    ///< P ≥ 0, N
   Eigen::Vector3d friction = Eigen::Vector3d::Zero();  ///< F on fibre A, N
-  double compliance = 0;   ///< W_kk, mm/N: overlap relief per unit force
-  double step_scale = 1;   ///< 1 for point contacts, 1/n for slices (Eq. 4.28)
+  double compliance = 0;     ///< W_kk, mm/N: overlap relief per unit force
+  double step_scale = 1;     ///< 1 for point contacts, 1/n for slices (Eq. 4.28)
   bool normal_held = false;  ///< centres nearly coincident: the last good normal was kept
 
   /// The force vector fibre A (or the walled fibre) receives, N.

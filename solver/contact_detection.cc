@@ -12,9 +12,12 @@ namespace fibrecheck {
 
 const char* to_string(ContactKind kind) {
   switch (kind) {
-    case ContactKind::point: return "point";
-    case ContactKind::line: return "line";
-    case ContactKind::wall: return "wall";
+    case ContactKind::point:
+      return "point";
+    case ContactKind::line:
+      return "line";
+    case ContactKind::wall:
+      return "wall";
   }
   return "?";
 }
@@ -47,8 +50,8 @@ ContactDetector::ContactDetector(const std::vector<Fibre>& fibres, const Scene& 
   if (!slicing_) x0_ = 0, x1_ = 1;
 }
 
-Eigen::Vector3d ContactDetector::interpolate(const std::vector<std::vector<Eigen::Vector3d>>& grid_u, int fibre,
-                                             double s) const {
+Eigen::Vector3d ContactDetector::interpolate(
+    const std::vector<std::vector<Eigen::Vector3d>>& grid_u, int fibre, double s) const {
   const auto& u = grid_u[fibre];
   const int m = static_cast<int>(grid_.size()) - 1;
   const int j = std::min(std::max(static_cast<int>(std::floor(s * m)), 0), m - 1);
@@ -66,8 +69,8 @@ void ContactDetector::set_normal_and_overlap(Contact& c, const Eigen::Vector3d& 
   // half the contact distance give no trustworthy direction either (it flips as centres pass).
   const bool coincident = distance < 0.5 * radii;
   if (first && coincident) {
-    Eigen::Vector3d n = c.kind == ContactKind::point ? fibres_[c.a].t.cross(fibres_[c.b].t)
-                                                     : Eigen::Vector3d(g2_);
+    Eigen::Vector3d n =
+        c.kind == ContactKind::point ? fibres_[c.a].t.cross(fibres_[c.b].t) : Eigen::Vector3d(g2_);
     if (n.norm() < 1e-12) n = g2_;
     c.normal = n.normalized();
   } else if (!coincident && (first || c.force <= 0.0)) {
@@ -224,7 +227,8 @@ void ContactDetector::detect_walls(const std::vector<std::vector<Eigen::Vector3d
   }
 }
 
-int ContactDetector::measure(std::vector<Contact>& contacts, const std::vector<Eigen::Vector3d>& u_a,
+int ContactDetector::measure(std::vector<Contact>& contacts,
+                             const std::vector<Eigen::Vector3d>& u_a,
                              const std::vector<Eigen::Vector3d>& u_b,
                              const std::vector<std::vector<Eigen::Vector3d>>& grid_u) const {
   const int m = static_cast<int>(grid_.size()) - 1;

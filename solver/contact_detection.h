@@ -68,8 +68,8 @@ class ContactDetector {
   void closest_on_polylines(const std::vector<std::vector<Eigen::Vector3d>>& grid_u, int a, int b,
                             int ia0, int ia1, int ib0, int ib1, Contact& contact,
                             double& distance) const;
-  void set_normal_and_overlap(Contact& contact, const Eigen::Vector3d& difference,
-                              double radii, bool first) const;
+  void set_normal_and_overlap(Contact& contact, const Eigen::Vector3d& difference, double radii,
+                              bool first) const;
 
   std::vector<Fibre> fibres_;
   std::vector<WallSpec> walls_;

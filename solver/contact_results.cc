@@ -21,8 +21,8 @@ std::vector<ContactResult> contact_results(const std::vector<Contact>& contacts,
     auto it = group.find(key);
     if (it == group.end()) {
       ContactResult cr;
-      cr.fibres = {fibres[c.a].id, c.kind == ContactKind::wall ? detector.wall_specs()[c.b].id
-                                                                 : fibres[c.b].id};
+      cr.fibres = {fibres[c.a].id,
+                   c.kind == ContactKind::wall ? detector.wall_specs()[c.b].id : fibres[c.b].id};
       cr.kind = to_string(c.kind);
       it = group.emplace(key, results.size()).first;
       results.push_back(cr);

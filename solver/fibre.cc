@@ -4,7 +4,9 @@
 
 namespace fibrecheck {
 
-double second_moment_of_area(double radius) { return M_PI * std::pow(radius, 4) / 4.0; }
+double second_moment_of_area(double radius) {
+  return M_PI * std::pow(radius, 4) / 4.0;
+}
 
 std::pair<Eigen::Vector3d, Eigen::Vector3d> cross_section_axes(const Eigen::Vector3d& axis) {
   const Eigen::Vector3d a = axis.normalized();

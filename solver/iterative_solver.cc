@@ -10,9 +10,9 @@
 
 #include "compliance_operator.h"
 #include "contact_detection.h"
+#include "contact_results.h"
 #include "convergence.h"
 #include "fibre.h"
-#include "contact_results.h"
 #include "friction.h"
 #include "superposition.h"
 
@@ -298,8 +298,8 @@ Result IterativeSolver::run() {
   const auto start = Clock::now();
   detect_contacts();
   for (const Contact& c : contacts_) {
-    const double r = std::min(fibres_[c.a].radius,
-                              c.kind == ContactKind::wall ? INFINITY : fibres_[c.b].radius);
+    const double r =
+        std::min(fibres_[c.a].radius, c.kind == ContactKind::wall ? INFINITY : fibres_[c.b].radius);
     if (c.overlap > r) {
       warnings_.push_back("initial overlap above the radius between " + detector_.describe(c) +
                           ": the contact side is ambiguous");
@@ -326,8 +326,7 @@ Result IterativeSolver::run() {
     double energy = NAN;
     if (energy_each_iteration || record_history(iteration))
       energy = superposition_.trapezium_energy(contacts_, force_on_a_, scene_.contact.slices);
-    if (record_history(iteration))
-      history_.push_back({iteration, residuals_.max_overlap, energy});
+    if (record_history(iteration)) history_.push_back({iteration, residuals_.max_overlap, energy});
 
     if (!std::isfinite(residual) || !std::isfinite(exact_energy_)) {
       status = "diverged";

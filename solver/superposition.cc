@@ -107,7 +107,8 @@ void Superposition::resort(const std::vector<Contact>& contacts) {
     }
     // Nearly sorted already: insertion sort is O(k) here.
     for (std::size_t j = 1; j < list.size(); ++j)
-      for (std::size_t m = j; m > 0 && list[m].a < list[m - 1].a; --m) std::swap(list[m], list[m - 1]);
+      for (std::size_t m = j; m > 0 && list[m].a < list[m - 1].a; --m)
+        std::swap(list[m], list[m - 1]);
   }
 }
 

@@ -1,13 +1,13 @@
 // The fibrecheck program as a user runs it: exit codes (0 converged, 2 bad input, 3 not solved),
 // one clear message naming file, field and reason, and no file written for bad input.
 #include <gtest/gtest.h>
+#include <sys/wait.h>
 
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
-#include <sys/wait.h>
 
 namespace {
 
@@ -30,13 +30,15 @@ std::string slurp(const std::string& path) {
 Outcome run(const std::string& arguments) {
   const std::string base = ::testing::TempDir() + "cli_" +
                            ::testing::UnitTest::GetInstance()->current_test_info()->name();
-  const std::string command = std::string(FIBRECHECK_BINARY) + " " + arguments + " >" + base +
-                              ".out 2>" + base + ".err";
+  const std::string command =
+      std::string(FIBRECHECK_BINARY) + " " + arguments + " >" + base + ".out 2>" + base + ".err";
   const int status = std::system(command.c_str());
   return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(base + ".out"), slurp(base + ".err")};
 }
 
-std::string scene(const std::string& name) { return std::string(FIBRECHECK_SCENES_DIR) + "/" + name + ".json"; }
+std::string scene(const std::string& name) {
+  return std::string(FIBRECHECK_SCENES_DIR) + "/" + name + ".json";
+}
 
 class Cli : public ::testing::Test {
  protected:
@@ -55,8 +57,8 @@ class Cli : public ::testing::Test {
 };
 
 TEST_F(Cli, SolveWritesResultAndVtkAndExitsZero) {
-  const Outcome r = run("solve " + scene("two_fibres_crossing") + " --out " + dir_ + "r.json --vtk " +
-                    dir_ + "r.vtp");
+  const Outcome r = run("solve " + scene("two_fibres_crossing") + " --out " + dir_ +
+                        "r.json --vtk " + dir_ + "r.vtp");
   EXPECT_EQ(r.code, 0) << r.err;
   EXPECT_NE(r.out.find("status converged"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("rule auto"), std::string::npos);
@@ -66,8 +68,8 @@ TEST_F(Cli, SolveWritesResultAndVtkAndExitsZero) {
 }
 
 TEST_F(Cli, CommandLineOverridesRuleSlicesAndC) {
-  const Outcome r = run("solve " + scene("parallel_fibres") + " --rule seed --c 0.02 --slices 20 --out " +
-                    dir_ + "r.json -q");
+  const Outcome r = run("solve " + scene("parallel_fibres") +
+                        " --rule seed --c 0.02 --slices 20 --out " + dir_ + "r.json -q");
   const json result = json::parse(slurp(dir_ + "r.json"));
   EXPECT_EQ(result["rule"], "seed");
   EXPECT_EQ(result["c"], 0.02);
@@ -95,7 +97,8 @@ TEST_F(Cli, BadInputExitsTwoWithFileFieldReasonAndWritesNothing) {
       {dir_ + "absent.json", "no such file"},
   };
   for (const auto& [path, field] : cases) {
-    const Outcome r = run("solve " + path + " --out " + dir_ + "out.json --vtk " + dir_ + "out.vtp");
+    const Outcome r =
+        run("solve " + path + " --out " + dir_ + "out.json --vtk " + dir_ + "out.vtp");
     EXPECT_EQ(r.code, 2) << path << ": " << r.err;
     EXPECT_NE(r.err.find(path), std::string::npos) << r.err;
     EXPECT_NE(r.err.find(field), std::string::npos) << r.err;
@@ -104,8 +107,8 @@ TEST_F(Cli, BadInputExitsTwoWithFileFieldReasonAndWritesNothing) {
     EXPECT_FALSE(fs::exists(dir_ + "out.vtp")) << path;
   }
   // A bad scene among good ones: nothing is solved or written.
-  const Outcome mixed = run("solve " + scene("two_fibres_crossing") + " " + write("neg.json", negative) +
-                        " --out-dir " + dir_ + "all");
+  const Outcome mixed = run("solve " + scene("two_fibres_crossing") + " " +
+                            write("neg.json", negative) + " --out-dir " + dir_ + "all");
   EXPECT_EQ(mixed.code, 2);
   EXPECT_FALSE(fs::exists(dir_ + "all"));
   EXPECT_EQ(run("solve " + scene("two_fibres_crossing") + " --rule fastest").code, 2);
@@ -148,13 +151,15 @@ TEST_F(Cli, GenerateTowIsDeterministicAndChecksItsOptions) {
   EXPECT_NE(bad.err.find("--compaction"), std::string::npos);
   EXPECT_FALSE(fs::exists(dir_ + "c.json"));
   // The generated scene solves.
-  EXPECT_EQ(run("solve " + dir_ + "a.json --rule accelerated -q --out " + dir_ + "a.result.json").code, 0);
+  EXPECT_EQ(
+      run("solve " + dir_ + "a.json --rule accelerated -q --out " + dir_ + "a.result.json").code,
+      0);
 }
 
 #ifdef FIBRECHECK_WITH_FEM
 TEST_F(Cli, MeshWritesGmshFilesAndRejectsBadScenes) {
-  const Outcome ok = run("mesh " + scene("two_fibres_crossing") + " --out " + dir_ + "m.msh --geo " +
-                         dir_ + "m.geo");
+  const Outcome ok = run("mesh " + scene("two_fibres_crossing") + " --out " + dir_ +
+                         "m.msh --geo " + dir_ + "m.geo");
   EXPECT_EQ(ok.code, 0) << ok.err;
   EXPECT_NE(slurp(dir_ + "m.msh").find("$PhysicalNames"), std::string::npos);
   EXPECT_NE(slurp(dir_ + "m.geo").find("Physical Curve(\"A\""), std::string::npos);
@@ -174,7 +179,8 @@ TEST_F(Cli, FemWritesTheSameResultSchema) {
   const json iterative = json::parse(slurp(dir_ + "i.json"));
   EXPECT_EQ(fem["solver"], "fem");
   EXPECT_EQ(fem["status"], "converged");
-  for (auto it = iterative.begin(); it != iterative.end(); ++it) EXPECT_TRUE(fem.contains(it.key())) << it.key();
+  for (auto it = iterative.begin(); it != iterative.end(); ++it)
+    EXPECT_TRUE(fem.contains(it.key())) << it.key();
   EXPECT_NEAR(fem["contacts"][0]["total_force"].get<double>(),
               iterative["contacts"][0]["total_force"].get<double>(), 1e-8 * 1.5e-5);
   json negative = crossing();

@@ -34,7 +34,8 @@ std::map<std::string, MeshedFibre> read_back(const std::string& path, bool from_
     std::vector<double> xyz;
     gmsh::model::mesh::getNodesForPhysicalGroup(dim, tag, tags, xyz);
     MeshedFibre& f = fibres[name];
-    for (std::size_t i = 0; i < tags.size(); ++i) f.nodes.emplace_back(xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]);
+    for (std::size_t i = 0; i < tags.size(); ++i)
+      f.nodes.emplace_back(xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]);
     std::vector<int> entities;
     gmsh::model::getEntitiesForPhysicalGroup(dim, tag, entities);
     for (int e : entities) {
@@ -97,7 +98,8 @@ TEST(FibreMeshStations, SupportsSlicesLoadsAndRefinedContacts) {
   EXPECT_EQ(stations[0].s, (std::vector<double>{0.0, 0.3, 0.5, 1.0}));
   EXPECT_EQ(stations[0].fine, (std::vector<char>{0, 0, 1, 0}));
   EXPECT_NEAR(stations[0].element_length, 1.0 / s.contact.slices, 1e-15);
-  const auto tow = mesh_stations(read_scene(std::string(FIBRECHECK_SCENES_DIR) + "/parallel_fibres.json"), MeshOptions{});
+  const auto tow = mesh_stations(
+      read_scene(std::string(FIBRECHECK_SCENES_DIR) + "/parallel_fibres.json"), MeshOptions{});
   EXPECT_EQ(tow[0].s.size(), 2u + 100u);  // supports and 100 slices
 }
 

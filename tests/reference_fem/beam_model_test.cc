@@ -24,7 +24,8 @@ TEST(BeamModel, NodalDeflectionsAreExactForPointAndUniformLoads) {
   s.fibres.push_back(f);
   const Fibre fibre = make_fibre(f, s.contact.axis, s.contact.parallel_angle_deg);
   const double positions[3] = {0.2, 0.55, 0.8};
-  const Eigen::Vector3d forces[3] = {2e-4 * fibre.e1 + 5e-5 * fibre.t, -1e-4 * fibre.e2, 3e-5 * fibre.e1 + 4e-5 * fibre.e2};
+  const Eigen::Vector3d forces[3] = {2e-4 * fibre.e1 + 5e-5 * fibre.t, -1e-4 * fibre.e2,
+                                     3e-5 * fibre.e1 + 4e-5 * fibre.e2};
   for (int i = 0; i < 3; ++i) {
     LoadSpec load;
     load.fibre = "F";

@@ -27,8 +27,9 @@ TEST(ReferenceSolver, CrossingForceIsOverlapOverSummedCompliances) {
   struct Case {
     double sa, sb, ra, rb, ea, eb;
   };
-  for (const Case& k : {Case{0.5, 0.5, 0.01, 0.01, 80000, 80000}, Case{0.3, 0.7, 0.01, 0.01, 80000, 80000},
-                        Case{0.15, 0.42, 0.012, 0.008, 230000, 72000}}) {
+  for (const Case& k :
+       {Case{0.5, 0.5, 0.01, 0.01, 80000, 80000}, Case{0.3, 0.7, 0.01, 0.01, 80000, 80000},
+        Case{0.15, 0.42, 0.012, 0.008, 230000, 72000}}) {
     const double overlap = 1e-3;
     const Scene s = testing::crossing(k.sa, k.sb, overlap, k.ra, k.rb, k.ea, k.eb);
     const double C = compliance(k.sa, 1.0, bending_stiffness(k.ra, k.ea)) +
@@ -36,7 +37,8 @@ TEST(ReferenceSolver, CrossingForceIsOverlapOverSummedCompliances) {
     const Result r = solve_reference(s);
     ASSERT_EQ(r.status, "converged") << r.message;
     EXPECT_EQ(r.solver, "fem");
-    EXPECT_NEAR(force_between(r, "A", "B"), overlap / C, 1e-8 * overlap / C) << k.sa << ", " << k.sb;
+    EXPECT_NEAR(force_between(r, "A", "B"), overlap / C, 1e-8 * overlap / C)
+        << k.sa << ", " << k.sb;
     EXPECT_LT(std::fabs(r.max_overlap), 1e-12);
   }
 }
@@ -47,7 +49,8 @@ TEST(ReferenceSolver, CompactionTestCaseIsExact) {
   ASSERT_EQ(r.status, "converged") << r.message;
   const double EI = bending_stiffness(0.01, 80000);
   const double v = 2 * 0.01 - 0.0195;
-  EXPECT_NEAR(force_between(r, "A1", "S1"), v / compliance(0.5, 1.0, EI), 1e-8 * v / compliance(0.5, 1.0, EI));
+  EXPECT_NEAR(force_between(r, "A1", "S1"), v / compliance(0.5, 1.0, EI),
+              1e-8 * v / compliance(0.5, 1.0, EI));
   EXPECT_NEAR(force_between(r, "B2", "S2"), v / compliance(1.0 / 6, 1.0, EI),
               1e-8 * v / compliance(1.0 / 6, 1.0, EI));
   EXPECT_EQ(r.walls.size(), 4u);
@@ -94,7 +97,8 @@ TEST(ReferenceSolver, ParallelFibresOnSlicesAgreeWithTheIterativeSolver) {
   for (std::size_t f = 0; f < 2; ++f)
     for (std::size_t j = 0; j < fem.fibres[f].displacement.size(); ++j) {
       largest = std::max(largest, fem.fibres[f].displacement[j].norm());
-      difference = std::max(difference, (fem.fibres[f].displacement[j] - it.fibres[f].displacement[j]).norm());
+      difference = std::max(difference,
+                            (fem.fibres[f].displacement[j] - it.fibres[f].displacement[j]).norm());
     }
   EXPECT_LT(difference, 1e-6 * largest);
   const double EIa = bending_stiffness(0.01, 80000), EIb = bending_stiffness(0.008, 70000);

@@ -29,9 +29,9 @@ TEST(Result, RoundTripKeepsEveryField) {
   EXPECT_EQ(back.contacts.at(0).points.at(0).force, r.contacts.at(0).points.at(0).force);
   // The schema's names (DESIGN §5) are the ones written.
   const nlohmann::json j = result_to_json(r);
-  for (const char* key : {"status", "criterion", "iterations", "wall_time_s", "strain_energy",
-                          "strain_energy_exact", "max_overlap", "stages", "fibres", "contacts",
-                          "walls", "history"})
+  for (const char* key :
+       {"status", "criterion", "iterations", "wall_time_s", "strain_energy", "strain_energy_exact",
+        "max_overlap", "stages", "fibres", "contacts", "walls", "history"})
     EXPECT_TRUE(j.contains(key)) << key;
   EXPECT_TRUE(j["contacts"][0].contains("total_force"));
   EXPECT_TRUE(j["contacts"][0]["points"][0].contains("position"));

@@ -65,7 +65,8 @@ TEST(Scene, HelpListsEveryFieldWithItsDefault) {
 
 TEST(Scene, WrittenSceneReadsBackTheSame) {
   json doc = minimal();
-  doc["loads"] = json::parse(R"([{"fibre": "A", "kind": "distributed", "force_per_length": [0,0,-1e-4]},
+  doc["loads"] =
+      json::parse(R"([{"fibre": "A", "kind": "distributed", "force_per_length": [0,0,-1e-4]},
                                  {"fibre": "B", "position": 0.25, "force": [0,0,1e-5]}])");
   doc["walls"] = json::parse(R"([{"id": "floor", "point": [0,0,-1], "normal": [0,0,2]}])");
   doc["solver"] = json::parse(R"({"rule": "seed", "c": 0.01, "overlap_tolerance": 1e-9})");
@@ -177,7 +178,8 @@ class SceneFile : public ::testing::Test {
     return path;
   }
   /// The field must start with `field` (the parser names the innermost value it was reading).
-  void expect_file_rejected(const std::string& path, const std::string& field, const std::string& why) {
+  void expect_file_rejected(const std::string& path, const std::string& field,
+                            const std::string& why) {
     try {
       read_scene(path);
       ADD_FAILURE() << "accepted " << path;
@@ -202,7 +204,8 @@ TEST_F(SceneFile, MalformedTruncatedMissingAndOverflowing) {
 }
 
 TEST_F(SceneFile, CommittedScenesAreValid) {
-  for (const char* name : {"two_fibres_crossing", "parallel_fibres", "small_tow_19", "compaction_test"}) {
+  for (const char* name :
+       {"two_fibres_crossing", "parallel_fibres", "small_tow_19", "compaction_test"}) {
     const Scene s = read_scene(std::string(FIBRECHECK_SCENES_DIR) + "/" + name + ".json");
     EXPECT_EQ(s.name, name);
   }

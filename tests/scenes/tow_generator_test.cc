@@ -12,7 +12,9 @@
 namespace fibrecheck {
 namespace {
 
-Eigen::Vector2d yz(const Eigen::Vector3d& p) { return {p.y(), p.z()}; }
+Eigen::Vector2d yz(const Eigen::Vector3d& p) {
+  return {p.y(), p.z()};
+}
 
 TEST(TowGenerator, SameSeedSameTowOtherSeedOtherTow) {
   TowOptions o;
@@ -38,7 +40,8 @@ TEST(TowGenerator, NoOverlapBeforeCompactionShallowOverlapsAfter) {
   for (std::size_t i = 0; i < placed.fibres.size(); ++i) {
     const FibreSpec& f = compacted.fibres[i];
     if ((yz(f.end) - yz(f.start)).norm() > 1e-12) ++misaligned;
-    EXPECT_LE(std::atan((yz(f.end) - yz(f.start)).norm() / o.length), o.misalignment_deg * M_PI / 180 + 1e-12);
+    EXPECT_LE(std::atan((yz(f.end) - yz(f.start)).norm() / o.length),
+              o.misalignment_deg * M_PI / 180 + 1e-12);
     for (const WallSpec& w : compacted.walls)
       for (const Eigen::Vector3d& p : {f.start, f.end})
         EXPECT_GE(w.normal.dot(p - w.point), r - 1e-12) << "support of " << f.id << " on a wall";

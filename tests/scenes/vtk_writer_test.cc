@@ -28,7 +28,7 @@ TEST(VtkWriter, PolylinesForFibresVerticesForContacts) {
   EXPECT_NE(vtp.find("NumberOfLines=\"2\""), std::string::npos);
   for (const char* array : {"Name=\"radius\"", "Name=\"displacement\"", "Name=\"force\""})
     EXPECT_NE(vtp.find(array), std::string::npos) << array;
-  EXPECT_EQ(std::count(vtp.begin(), vtp.end(), '<') , std::count(vtp.begin(), vtp.end(), '>'));
+  EXPECT_EQ(std::count(vtp.begin(), vtp.end(), '<'), std::count(vtp.begin(), vtp.end(), '>'));
   EXPECT_NE(vtp.find("</VTKFile>"), std::string::npos);
 }
 

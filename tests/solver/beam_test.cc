@@ -24,7 +24,8 @@ TEST(Beam, SinglePointLoadMatchesEquations4_12And4_13) {
   for (double a : {0.1, 0.37, 0.5, 0.83}) {
     for (double x : {0.0, 0.05, 0.2, a, 0.61, 0.99, 1.0}) {
       const double expected = textbook_deflection(2e-4, a, x);
-      EXPECT_NEAR(point_load_deflection(2e-4, a, x, L, EI), expected, 1e-14 + 1e-12 * std::fabs(expected))
+      EXPECT_NEAR(point_load_deflection(2e-4, a, x, L, EI), expected,
+                  1e-14 + 1e-12 * std::fabs(expected))
           << "a = " << a << ", x = " << x;
     }
   }
@@ -79,7 +80,8 @@ TEST(Beam, UniformLoadClosedForms) {
   EXPECT_NEAR(uniform_load_moment(q, 0.5, L), q / 8, 1e-18);
   // ∫v dx by three-point Gauss–Legendre, exact for the quartic.
   double integral = 0.0;
-  const double nodes[3] = {-std::sqrt(0.6), 0.0, std::sqrt(0.6)}, weights[3] = {5.0 / 9, 8.0 / 9, 5.0 / 9};
+  const double nodes[3] = {-std::sqrt(0.6), 0.0, std::sqrt(0.6)},
+               weights[3] = {5.0 / 9, 8.0 / 9, 5.0 / 9};
   for (int i = 0; i < 3; ++i)
     integral += 0.5 * L * weights[i] * uniform_load_deflection(q, 0.5 * L * (1 + nodes[i]), L, EI);
   EXPECT_NEAR(uniform_load_deflection_integral(q, L, EI), integral, 1e-9 * integral);

@@ -32,7 +32,8 @@ double brute_force_distance(const V& a1, const V& a2, const V& b1, const V& b2) 
   return best;
 }
 
-void expect_consistent(const ClosestPoints& cp, const V& a1, const V& a2, const V& b1, const V& b2) {
+void expect_consistent(const ClosestPoints& cp, const V& a1, const V& a2, const V& b1,
+                       const V& b2) {
   ASSERT_TRUE(std::isfinite(cp.mu_a) && std::isfinite(cp.mu_b) && std::isfinite(cp.distance));
   EXPECT_GE(cp.mu_a, 0.0);
   EXPECT_LE(cp.mu_a, 1.0);

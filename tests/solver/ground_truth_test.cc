@@ -43,8 +43,9 @@ TEST(GroundTruth, OnePointLoadOnASkewFibre) {
   const double L = (end - start).norm(), EI = bending_stiffness(0.012, 70000), a = 0.3 * L;
   for (int j = 0; j < 11; ++j) {
     const double x = L * j / 10.0, b = L - a;
-    const double v = x <= a ? 2e-4 * b * x * (L * L - b * b - x * x) / (6 * EI * L)
-                            : 2e-4 * a * (L - x) * (L * L - a * a - (L - x) * (L - x)) / (6 * EI * L);
+    const double v = x <= a
+                         ? 2e-4 * b * x * (L * L - b * b - x * x) / (6 * EI * L)
+                         : 2e-4 * a * (L - x) * (L * L - a * a - (L - x) * (L - x)) / (6 * EI * L);
     EXPECT_NEAR((r.fibres[0].displacement[j] - v * transverse).norm(), 0.0, 1e-12 * (1 + v / 1e-3));
   }
   EXPECT_NEAR(r.axial_load_dropped, 5e-5, 1e-18);
@@ -60,7 +61,9 @@ struct CrossingCase {
 
 }  // namespace
 
-void PrintTo(UpdateRule rule, std::ostream* os) { *os << to_string(rule); }
+void PrintTo(UpdateRule rule, std::ostream* os) {
+  *os << to_string(rule);
+}
 
 namespace {
 
@@ -85,7 +88,8 @@ TEST_P(Crossing, ForceIsOverlapOverSummedCompliances) {
   EXPECT_NEAR(r.contacts[0].total_force, overlap / C, 1e-4 * overlap / C);
   EXPECT_NEAR(r.contacts[0].points[0].position, k.sa, 1e-6);
   // Energy: ½Pδ, and the trapezium estimate close to it.
-  EXPECT_NEAR(r.strain_energy_exact, 0.5 * overlap * overlap / C, 1e-4 * 0.5 * overlap * overlap / C);
+  EXPECT_NEAR(r.strain_energy_exact, 0.5 * overlap * overlap / C,
+              1e-4 * 0.5 * overlap * overlap / C);
   EXPECT_NEAR(r.c_stable_limit, 2.0 / C, 1e-6 * 2.0 / C);
 }
 
@@ -149,7 +153,8 @@ TEST(GroundTruth, StiffFibrePressingOthers) {
         W(i, j) = testing::unit_load_deflection(ys[i] + 0.5, ys[j] + 0.5, EIs);
         if (i == j) W(i, j) += compliance(0.5, 1.0, EI);
       }
-    const Eigen::Vector3d P = W.ldlt().solve(Eigen::Vector3d(overlaps[0], overlaps[1], overlaps[2]));
+    const Eigen::Vector3d P =
+        W.ldlt().solve(Eigen::Vector3d(overlaps[0], overlaps[1], overlaps[2]));
     for (int i = 0; i < 3; ++i) {
       const ContactResult* c = find_contact(res, "S", "F" + std::to_string(i));
       ASSERT_NE(c, nullptr);
@@ -186,7 +191,8 @@ TEST(GroundTruth, SliceForcesScaleAsOneOverN) {
     const ContactResult& c = r.contacts.at(0);
     double middle_force = 0.0;
     for (const ContactPoint& p : c.points)
-      if (std::fabs(p.position - 0.5) < 0.5 / n + 1e-12) middle_force = std::max(middle_force, p.force.norm());
+      if (std::fabs(p.position - 0.5) < 0.5 / n + 1e-12)
+        middle_force = std::max(middle_force, p.force.norm());
     // A slice near mid-span carries about total/n.
     EXPECT_NEAR(middle_force * n, c.total_force, 0.05 * c.total_force) << "n = " << n;
     if (total > 0) {
@@ -208,7 +214,11 @@ TEST(GroundTruth, CompactionTestCase) {
   ASSERT_EQ(r.status, "converged") << r.message;
   const double EI = bending_stiffness(0.01, 80000);
   EXPECT_NEAR(1.0 / compliance(0.5, 1.0, EI), 30.16e-3, 0.01e-3);
-  struct Expected { const char* straight; const char* slanted; double a; };
+  struct Expected {
+    const char* straight;
+    const char* slanted;
+    double a;
+  };
   for (const Expected& e : {Expected{"A1", "S1", 0.5}, Expected{"B1", "S1", 0.5},
                             Expected{"A2", "S2", 1.0 / 6}, Expected{"B2", "S2", 1.0 / 6}}) {
     const int i = s.fibre_index(e.straight), j = s.fibre_index(e.slanted);

@@ -10,7 +10,9 @@
 namespace fibrecheck {
 namespace {
 
-Result solve(const Scene& scene) { return solve_iteratively(scene, SolverOptions::from_scene(scene)); }
+Result solve(const Scene& scene) {
+  return solve_iteratively(scene, SolverOptions::from_scene(scene));
+}
 
 bool has_stage(const Result& r, const std::string& stage) {
   return std::find(r.stages.begin(), r.stages.end(), stage) != r.stages.end();
