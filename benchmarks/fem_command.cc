@@ -10,12 +10,13 @@
 #include "reference_solver.h"
 #include "result.h"
 #include "scene.h"
+#include "vtk_writer.h"
 
 namespace fibrecheck {
 
 void add_fem_command(CLI::App& app, int& exit_code) {
   struct Arguments {
-    std::string scene, out;
+    std::string scene, out, vtk;
     int slices = 0;
     bool quiet = false;
   };
@@ -26,6 +27,7 @@ void add_fem_command(CLI::App& app, int& exit_code) {
   fem->add_option("--out", args->out, "Result file (JSON)");
   fem->add_option("--slices", args->slices, "Cross-sections n (overrides contact.slices)")
       ->check(CLI::Range(1, 1000000));
+  fem->add_option("--vtk", args->vtk, "ParaView file (.vtp) of fibres and contact forces");
   fem->add_flag("--quiet,-q", args->quiet, "Print nothing but errors");
   fem->callback([args, &exit_code] {
     Scene scene;
@@ -51,6 +53,7 @@ void add_fem_command(CLI::App& app, int& exit_code) {
     }
     try {
       if (!args->out.empty()) write_result(args->out, result);
+      if (!args->vtk.empty()) write_vtk(args->vtk, scene, result);
     } catch (const std::exception& e) {
       std::cerr << "fibrecheck fem: error: " << e.what() << "\n";
       exit_code = kExitBadInput;
