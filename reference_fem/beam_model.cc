@@ -139,7 +139,11 @@ struct BeamModel::Implementation {
     // The matrix does not depend on the loads: assembled once, only the right-hand side each time.
     const bool with_matrix = !matrix_assembled;
     system_rhs = 0;
+    // Without the matrix and without uniform loads the cells contribute nothing: only point forces.
+    bool distributed = false;
+    for (const Eigen::Vector2d& qf : q) distributed |= !qf.isZero();
     for (const auto& cell : dof_handler.active_cell_iterators()) {
+      if (!with_matrix && !distributed) break;
       const int f = fibre_of_material.at(cell->material_id());
       const double EI = fibres[f].EI;
       fe_values.reinit(cell);
@@ -148,7 +152,7 @@ struct BeamModel::Implementation {
       for (unsigned int k = 0; k < quadrature.size(); ++k)
         for (unsigned int i = 0; i < n; ++i) {
           const unsigned int ci = fe.system_to_component_index(i).first;
-          for (unsigned int j = 0; j < n; ++j) {
+          for (unsigned int j = 0; with_matrix && j < n; ++j) {
             const unsigned int cj = fe.system_to_component_index(j).first;
             double value = 0.0;
             for (int plane = 0; plane < 2; ++plane) {

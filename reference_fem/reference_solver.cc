@@ -161,20 +161,13 @@ Result solve_reference(const Scene& scene, const ReferenceOptions& options) {
     model->run({}, true);
     const Eigen::Index n = static_cast<Eigen::Index>(contacts.size());
     Eigen::VectorXd d0(n);
-    auto overlap = [&](Contact& c, bool update_normal) {
-      const Eigen::Vector3d ac = fibres[c.a].point(c.s_a) + model->displacement(c.a, c.s_a);
-      if (c.kind == ContactKind::wall)
-        return fibres[c.a].radius - c.normal.dot(ac - detector.wall_specs()[c.b].point);
-      Eigen::Vector3d difference = fibres[c.b].point(c.s_b) + model->displacement(c.b, c.s_b) - ac;
-      if (c.kind == ContactKind::line)
-        difference -=
-            difference.dot(scene.contact.axis.normalized()) * scene.contact.axis.normalized();
-      const double radii = fibres[c.a].radius + fibres[c.b].radius;
-      if (update_normal && c.force <= 0.0 && difference.norm() > 0.5 * radii)
-        c.normal = difference.normalized();
-      return radii - c.normal.dot(difference);
-    };
-    for (Eigen::Index k = 0; k < n; ++k) d0[k] = overlap(contacts[k], false);
+    for (Eigen::Index k = 0; k < n; ++k) {
+      const Contact& c = contacts[k];
+      const Eigen::Vector3d no_displacement = Eigen::Vector3d::Zero();
+      d0[k] = detector.overlap_along_normal(
+          c, model->displacement(c.a, c.s_a),
+          c.kind == ContactKind::wall ? no_displacement : model->displacement(c.b, c.s_b));
+    }
 
     // W column by column: the overlap each unit force pair removes at every contact.
     Eigen::MatrixXd W(n, n);
@@ -231,17 +224,7 @@ Result solve_reference(const Scene& scene, const ReferenceOptions& options) {
     Contact& c = contacts[k];
     u_a[k] = model->displacement(c.a, c.s_a);
     if (c.kind != ContactKind::wall) u_b[k] = model->displacement(c.b, c.s_b);
-    const Eigen::Vector3d ac = fibres[c.a].point(c.s_a) + u_a[k];
-    double d;
-    if (c.kind == ContactKind::wall) {
-      d = fibres[c.a].radius - c.normal.dot(ac - detector.wall_specs()[c.b].point);
-    } else {
-      Eigen::Vector3d difference = fibres[c.b].point(c.s_b) + u_b[k] - ac;
-      if (c.kind == ContactKind::line)
-        difference -=
-            difference.dot(scene.contact.axis.normalized()) * scene.contact.axis.normalized();
-      d = fibres[c.a].radius + fibres[c.b].radius - c.normal.dot(difference);
-    }
+    const double d = detector.overlap_along_normal(c, u_a[k], u_b[k]);
     c.overlap = d;
     r.max_overlap = std::max(r.max_overlap, d);
     if (c.force > 0.0) r.gap_force_residual = std::max(r.gap_force_residual, -d);

@@ -269,6 +269,16 @@ int ContactDetector::measure(std::vector<Contact>& contacts,
   return held;
 }
 
+double ContactDetector::overlap_along_normal(const Contact& c, const Eigen::Vector3d& u_a,
+                                             const Eigen::Vector3d& u_b) const {
+  const Eigen::Vector3d ac = fibres_[c.a].point(c.s_a) + u_a;
+  if (c.kind == ContactKind::wall)
+    return fibres_[c.a].radius - c.normal.dot(ac - walls_[c.b].point);
+  Eigen::Vector3d difference = fibres_[c.b].point(c.s_b) + u_b - ac;
+  if (c.kind == ContactKind::line) difference -= difference.dot(axis_) * axis_;
+  return fibres_[c.a].radius + fibres_[c.b].radius - c.normal.dot(difference);
+}
+
 double ContactDetector::self_compliance(const Contact& c) const {
   auto along = [&](int f, double s) {
     const Fibre& fibre = fibres_[f];

@@ -38,6 +38,12 @@ class ContactDetector {
               const std::vector<Eigen::Vector3d>& u_b,
               const std::vector<std::vector<Eigen::Vector3d>>& grid_u) const;
 
+  /// Overlap d = (rA + rB) − n·(Bc − Ac) of one contact along its current normal (Eq. 4.14; the
+  /// part along the tow axis dropped for slices; r − n·(Ac − wall point) for walls), given the
+  /// displacements of its two sides.
+  double overlap_along_normal(const Contact& contact, const Eigen::Vector3d& u_a,
+                              const Eigen::Vector3d& u_b) const;
+
   /// W_kk: how much overlap a unit force removes at this contact alone (mm/N).
   double self_compliance(const Contact& contact) const;
 
