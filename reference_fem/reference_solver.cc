@@ -121,12 +121,7 @@ Result solve_reference(const Scene& scene, const ReferenceOptions& options) {
     for (Contact& c : found) {
       auto it = previous.find(c.key());
       if (it == previous.end()) continue;
-      if (it->second->force > 0.0) {
-        c.force = it->second->force;
-        c.normal = it->second->normal;
-        c.s_a = it->second->s_a;
-        c.s_b = it->second->s_b;
-      }
+      c.force = it->second->force;
       previous.erase(it);
     }
     for (const auto& [key, c] : previous)

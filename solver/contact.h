@@ -14,8 +14,7 @@ const char* to_string(ContactKind kind);
 /// One contact point and its state in the force iteration.
 ///
 /// Sign conventions: `normal` is the unit vector from fibre A's centre towards fibre B's (for a
-/// wall, the wall's normal); it follows the centres while the contact carries no force and is kept
-/// while it does. The overlap is d = (rA + rB) − n·(Bc − Ac) (Eq. 4.14 with the sign of §4.3.2:
+/// wall, the wall's normal), both taken on the undeformed fibres. The overlap is d = (rA + rB) − n·(Bc − Ac) (Eq. 4.14 with the sign of §4.3.2:
 /// d > 0 overlaps). Fibre A receives −P·n + F, fibre B receives +P·n − F (a wall pushes its
 /// fibre with +P·n + F), where F is the friction force of §4.3.4.
 struct Contact {
@@ -31,7 +30,7 @@ struct Contact {
   Eigen::Vector3d friction = Eigen::Vector3d::Zero();  ///< F on fibre A, N
   double compliance = 0;     ///< W_kk, mm/N: overlap relief per unit force
   double step_scale = 1;     ///< 1 for point contacts, 1/n for slices (Eq. 4.28)
-  bool normal_held = false;  ///< centres nearly coincident: the last good normal was kept
+  bool normal_held = false;  ///< centres nearly coincident: a fixed normal was taken
 
   /// The force vector fibre A (or the walled fibre) receives, N.
   Eigen::Vector3d force_on_a() const {

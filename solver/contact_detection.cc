@@ -59,27 +59,29 @@ Eigen::Vector3d ContactDetector::interpolate(
   return (1.0 - w) * u[j] + w * u[j + 1];
 }
 
-void ContactDetector::set_normal_and_overlap(Contact& c, const Eigen::Vector3d& difference,
-                                             double radii, bool first) const {
-  const double distance = difference.norm();
-  // The normal follows the centres only while the contact carries no force. Once it pushes, its
-  // normal stays the one of the state it was found in (before the fibres touched), and the
-  // overlap is measured along it: the contact problem then stays the same linear complementarity
-  // problem from iteration to iteration instead of turning with the fibres. Centres closer than
-  // half the contact distance give no trustworthy direction either (it flips as centres pass).
-  const bool coincident = distance < 0.5 * radii;
-  if (first && coincident) {
-    Eigen::Vector3d n =
-        c.kind == ContactKind::point ? fibres_[c.a].t.cross(fibres_[c.b].t) : Eigen::Vector3d(g2_);
-    if (n.norm() < 1e-12) n = g2_;
-    c.normal = n.normalized();
-  } else if (!coincident && (first || c.force <= 0.0)) {
-    c.normal = difference / distance;
+void ContactDetector::place_on_undeformed(Contact& c) const {
+  if (c.kind == ContactKind::wall) return;  // the wall's normal, at its station
+  const Fibre& fa = fibres_[c.a];
+  const Fibre& fb = fibres_[c.b];
+  if (c.kind == ContactKind::point) {
+    // Eqs. 4.16–4.24 on the straight chords.
+    const ClosestPoints cp = segment_closest_points(fa.start, fa.end, fb.start, fb.end);
+    c.s_a = cp.mu_a;
+    c.s_b = cp.mu_b;
   }
-  c.normal_held = coincident;
-  // Eq. 4.14 with the overlap positive: d = (rA + rB) − n·(Bc − Ac), which is
-  // (rA + rB) − ‖Bc − Ac‖ whenever the normal is the current direction.
-  c.overlap = radii - c.normal.dot(difference);
+  Eigen::Vector3d difference = fb.point(c.s_b) - fa.point(c.s_a);
+  if (c.kind == ContactKind::line) difference -= difference.dot(axis_) * axis_;
+  const double distance = difference.norm();
+  // Centres closer than half the contact distance give no trustworthy direction (two fibres
+  // passing through each other have no preferred side): a fixed one is taken and reported.
+  c.normal_held = distance < 0.5 * (fa.radius + fb.radius);
+  if (!c.normal_held) {
+    c.normal = difference / distance;
+    return;
+  }
+  Eigen::Vector3d n = c.kind == ContactKind::point ? fa.t.cross(fb.t) : Eigen::Vector3d(g2_);
+  if (n.norm() < 1e-12) n = g2_;
+  c.normal = n.normalized();
 }
 
 std::vector<Contact> ContactDetector::detect(
@@ -88,21 +90,26 @@ std::vector<Contact> ContactDetector::detect(
   if (slicing_) detect_lines(grid_u, contacts);
   if (point_pairs_possible_) detect_points(grid_u, contacts);
   if (!walls_.empty()) detect_walls(grid_u, contacts);
-  for (Contact& c : contacts) c.compliance = self_compliance(c);
+  for (Contact& c : contacts) {
+    place_on_undeformed(c);
+    c.overlap = overlap_along_normal(c, interpolate(grid_u, c.a, c.s_a),
+                                     c.kind == ContactKind::wall
+                                         ? Eigen::Vector3d::Zero().eval()
+                                         : interpolate(grid_u, c.b, c.s_b));
+    c.compliance = self_compliance(c);
+  }
   return contacts;
 }
 
 void ContactDetector::detect_lines(const std::vector<std::vector<Eigen::Vector3d>>& grid_u,
                                    std::vector<Contact>& out) const {
   std::vector<Eigen::Vector2d> centres;
-  std::vector<Eigen::Vector3d> centres3;
   std::vector<double> radii, params;
   std::vector<int> owner;
   std::vector<std::pair<int, int>> pairs;
   for (int i = 0; i < slices_; ++i) {
     const double x = slice_position(i);
     centres.clear();
-    centres3.clear();
     radii.clear();
     params.clear();
     owner.clear();
@@ -113,7 +120,6 @@ void ContactDetector::detect_lines(const std::vector<std::vector<Eigen::Vector3d
       if (!(s > 1e-12 && s < 1.0 - 1e-12)) continue;
       const Eigen::Vector3d c = fibre.point(s) + interpolate(grid_u, f, s);
       centres.emplace_back(c.dot(g1_), c.dot(g2_));
-      centres3.push_back(c);
       radii.push_back(fibre.radius);
       params.push_back(s);
       owner.push_back(f);
@@ -132,9 +138,6 @@ void ContactDetector::detect_lines(const std::vector<std::vector<Eigen::Vector3d
       c.s_a = params[first];
       c.s_b = params[second];
       c.step_scale = 1.0 / slices_;  // Eq. 4.28: a slice carries 1/n of the line's force
-      Eigen::Vector3d difference = centres3[second] - centres3[first];
-      difference -= difference.dot(axis_) * axis_;
-      set_normal_and_overlap(c, difference, radii[first] + radii[second], true);
       out.push_back(c);
     }
   }
@@ -195,9 +198,6 @@ void ContactDetector::detect_points(const std::vector<std::vector<Eigen::Vector3
       closest_on_polylines(grid_u, a, b, 0, m, 0, m, c, distance);
       const double radii = fibres_[a].radius + fibres_[b].radius;
       if (distance - radii >= margin_) continue;
-      const Eigen::Vector3d difference = (fibres_[b].point(c.s_b) + interpolate(grid_u, b, c.s_b)) -
-                                         (fibres_[a].point(c.s_a) + interpolate(grid_u, a, c.s_a));
-      set_normal_and_overlap(c, difference, radii, true);
       out.push_back(c);
     }
   }
@@ -227,46 +227,16 @@ void ContactDetector::detect_walls(const std::vector<std::vector<Eigen::Vector3d
   }
 }
 
-int ContactDetector::measure(std::vector<Contact>& contacts,
-                             const std::vector<Eigen::Vector3d>& u_a,
-                             const std::vector<Eigen::Vector3d>& u_b,
-                             const std::vector<std::vector<Eigen::Vector3d>>& grid_u) const {
-  const int m = static_cast<int>(grid_.size()) - 1;
-  int held = 0;
+void ContactDetector::measure(std::vector<Contact>& contacts,
+                              const std::vector<Eigen::Vector3d>& u_a,
+                              const std::vector<Eigen::Vector3d>& u_b) const {
   const int count = static_cast<int>(contacts.size());
-  // Plain local pointers and a copy of the axis: the stores into the contacts could otherwise alias
-  // them, and the compiler would reload them for every contact.
-  const Fibre* const fibre = fibres_.data();
+  Contact* const contact = contacts.data();
   const Eigen::Vector3d* const side_a = u_a.data();
   const Eigen::Vector3d* const side_b = u_b.data();
-  const Eigen::Vector3d axis = axis_;
-#pragma omp parallel for schedule(static) reduction(+ : held) if (count > 4096)
-  for (int k = 0; k < count; ++k) {
-    Contact& c = contacts[k];
-    const Eigen::Vector3d ac = fibre[c.a].point(c.s_a) + side_a[k];
-    if (c.kind == ContactKind::wall) {
-      c.overlap = fibre[c.a].radius - c.normal.dot(ac - walls_[c.b].point);
-      continue;
-    }
-    Eigen::Vector3d difference = fibre[c.b].point(c.s_b) + side_b[k] - ac;
-    if (c.kind == ContactKind::line) difference -= difference.dot(axis) * axis;
-    set_normal_and_overlap(c, difference, fibre[c.a].radius + fibre[c.b].radius, false);
-    held += c.normal_held ? 1 : 0;
-    if (c.kind == ContactKind::point && c.force <= 0.0) {
-      // Until it pushes, a point contact follows the closest points of the deformed centrelines
-      // (search a few segments around the last ones); once it pushes, it stays where it touched,
-      // like its normal, so the contact problem stays linear (small-deflection theory).
-      const int ia = std::min(static_cast<int>(c.s_a * m), m - 1);
-      const int ib = std::min(static_cast<int>(c.s_b * m), m - 1);
-      Contact moved = c;
-      double distance;
-      closest_on_polylines(grid_u, c.a, c.b, std::max(ia - 2, 0), std::min(ia + 3, m),
-                           std::max(ib - 2, 0), std::min(ib + 3, m), moved, distance);
-      c.s_a = moved.s_a;
-      c.s_b = moved.s_b;
-    }
-  }
-  return held;
+#pragma omp parallel for schedule(static) if (count > 4096)
+  for (int k = 0; k < count; ++k)
+    contact[k].overlap = overlap_along_normal(contact[k], side_a[k], side_b[k]);
 }
 
 double ContactDetector::overlap_along_normal(const Contact& c, const Eigen::Vector3d& u_a,

@@ -10,14 +10,16 @@
 
 namespace fibrecheck {
 
-/// Finds and measures contacts (seed §4.3.3) on the deformed fibres:
-///  - point contacts between fibres that cross, by the closest points of their deformed centrelines
-///    approximated by straight segments (Eqs. 4.16–4.24);
+/// Finds and measures contacts (seed §4.3.3):
+///  - point contacts between fibres that cross, by the closest points of their centrelines
+///    (Eqs. 4.16–4.24);
 ///  - line contacts between tow fibres, by n cross-sections ("slices") perpendicular to the tow
 ///    axis, each a point contact at its slice (Figures 4.11–4.12);
 ///  - fibre–wall contacts at n stations along each fibre.
-/// Candidates are found with a margin before they touch, so a contact's normal is known from a
-/// non-overlapping state.
+/// Candidates are found on the deformed fibres, with a margin before they touch. Every contact's
+/// place and normal are those of the undeformed fibres (small-deflection contact): the overlap
+/// d = (rA + rB) − n·(Bc − Ac) is then linear in the deflections, and the contact problem has one
+/// answer whatever path leads to it — the same for the iterative solver and the reference.
 class ContactDetector {
  public:
   ContactDetector(const std::vector<Fibre>& fibres, const Scene& scene, double margin);
@@ -25,18 +27,20 @@ class ContactDetector {
   /// Fractions of the length at which each fibre's deformed centreline is sampled for detection.
   const std::vector<double>& grid() const { return grid_; }
 
-  /// All candidate contacts (overlap > −margin) of the deformed state given by each fibre's
-  /// displacements at `grid()` (`grid_u[fibre][j]`). Forces are zero; overlaps and normals set.
+  /// All candidate contacts (closer than the margin) of the deformed state given by each fibre's
+  /// displacements at `grid()` (`grid_u[fibre][j]`). Forces are zero; places, normals (see
+  /// `place_on_undeformed`) and overlaps set.
   std::vector<Contact> detect(const std::vector<std::vector<Eigen::Vector3d>>& grid_u) const;
 
-  /// Measures every contact again from the exact displacements of its two sides (`u_a`, `u_b`):
-  /// overlap d (Eq. 4.14) and normal. Point contacts that carry no force then look for their
-  /// closest points again on the deformed polylines `grid_u` (only fibres with point contacts need
-  /// them) and move there for the next evaluation; a contact that pushes keeps its place and its
-  /// normal. Returns how many normals were held because the centres nearly coincided.
-  int measure(std::vector<Contact>& contacts, const std::vector<Eigen::Vector3d>& u_a,
-              const std::vector<Eigen::Vector3d>& u_b,
-              const std::vector<std::vector<Eigen::Vector3d>>& grid_u) const;
+  /// Measures every contact's overlap again from the displacements of its two sides (`u_a`, `u_b`).
+  void measure(std::vector<Contact>& contacts, const std::vector<Eigen::Vector3d>& u_a,
+               const std::vector<Eigen::Vector3d>& u_b) const;
+
+  /// Sets a contact's place and normal from the undeformed fibres: a point contact at the closest
+  /// points of the two chords, its normal from A's centre to B's (the part along the tow axis
+  /// dropped for slices). Where the centres nearly coincide there is no trustworthy direction: the
+  /// normal is A's axis × B's (or the slices' second axis) and `normal_held` is set.
+  void place_on_undeformed(Contact& contact) const;
 
   /// Overlap d = (rA + rB) − n·(Bc − Ac) of one contact along its current normal (Eq. 4.14; the
   /// part along the tow axis dropped for slices; r − n·(Ac − wall point) for walls), given the
@@ -46,9 +50,6 @@ class ContactDetector {
 
   /// W_kk: how much overlap a unit force removes at this contact alone (mm/N).
   double self_compliance(const Contact& contact) const;
-
-  /// Fibres that carry point contacts need their deformed polylines every iteration.
-  bool needs_polylines() const { return point_pairs_possible_; }
 
   bool slicing() const { return slicing_; }
   bool point_search() const { return point_pairs_possible_; }
@@ -74,8 +75,6 @@ class ContactDetector {
   void closest_on_polylines(const std::vector<std::vector<Eigen::Vector3d>>& grid_u, int a, int b,
                             int ia0, int ia1, int ib0, int ib1, Contact& contact,
                             double& distance) const;
-  void set_normal_and_overlap(Contact& contact, const Eigen::Vector3d& difference, double radii,
-                              bool first) const;
 
   std::vector<Fibre> fibres_;
   std::vector<WallSpec> walls_;

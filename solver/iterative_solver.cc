@@ -82,7 +82,7 @@ class IterativeSolver {
   }
 
   void detect_contacts();
-  void compute_grid(bool only_point_fibres);
+  void compute_grid();
   bool moved_beyond_margin();
   void estimate_step();
   std::optional<std::string> find_unresolvable() const;
@@ -104,7 +104,6 @@ class IterativeSolver {
   std::vector<Contact> contacts_;
   std::vector<Eigen::Vector3d> force_on_a_, u_a_, u_b_;
   std::vector<std::vector<Eigen::Vector3d>> grid_u_, grid_u_at_detection_;
-  std::vector<char> has_point_contact_;
   Eigen::VectorXd previous_forces_;  ///< accelerated rule: the previous iterate P_{k−1}
   Eigen::VectorXd iterate_;          ///< accelerated rule: the current iterate P_k
   Eigen::VectorXd next_forces_;      ///< scratch: the forces of the next evaluation
@@ -122,15 +121,12 @@ class IterativeSolver {
   std::vector<HistoryEntry> history_;
 };
 
-void IterativeSolver::compute_grid(bool only_point_fibres) {
+void IterativeSolver::compute_grid() {
   const std::vector<double>& s = detector_.grid();
   grid_u_.resize(fibres_.size());
   const int n = static_cast<int>(fibres_.size());
 #pragma omp parallel for schedule(dynamic, 16) if (n > 64)
-  for (int f = 0; f < n; ++f) {
-    if (only_point_fibres && !has_point_contact_[f]) continue;
-    superposition_.fibre_field(f, contacts_, force_on_a_, true, s, grid_u_[f]);
-  }
+  for (int f = 0; f < n; ++f) superposition_.fibre_field(f, contacts_, force_on_a_, true, s, grid_u_[f]);
 }
 
 void IterativeSolver::gather_forces() {
@@ -145,10 +141,11 @@ void IterativeSolver::gather_forces() {
 
 void IterativeSolver::detect_contacts() {
   // Deformed shape under the current forces, then a fresh candidate list. Contacts found again keep
-  // their state (force, friction, the normal they push along, the momentum of the accelerated
-  // rule); W and its step are estimated again only when the list changed.
+  // their state (force, friction, the momentum of the accelerated rule); their place and normal
+  // are those of the undeformed fibres anyway. W and its step are estimated again only when the
+  // list changed.
   gather_forces();
-  compute_grid(false);
+  compute_grid();
   std::unordered_map<std::uint64_t, std::size_t> previous;
   for (std::size_t k = 0; k < contacts_.size(); ++k) previous[contacts_[k].key()] = k;
   std::vector<Contact> found = detector_.detect(grid_u_);
@@ -160,8 +157,6 @@ void IterativeSolver::detect_contacts() {
     const Contact& old = contacts_[it->second];
     c.force = old.force;
     c.friction = old.friction;
-    if (old.force > 0.0 || old.normal_held) c.normal = old.normal, c.normal_held = old.normal_held;
-    if (c.kind == ContactKind::point) c.s_a = old.s_a, c.s_b = old.s_b;
     origin[i] = static_cast<long>(it->second);
     previous.erase(it);
   }
@@ -189,16 +184,15 @@ void IterativeSolver::detect_contacts() {
   grid_u_at_detection_ = grid_u_;
   if (unchanged) return;
   superposition_.attach(contacts_);
-  has_point_contact_.assign(fibres_.size(), 0);
-  for (const Contact& c : contacts_)
-    if (c.kind == ContactKind::point) has_point_contact_[c.a] = has_point_contact_[c.b] = 1;
+  held_normals_ = 0;
+  for (const Contact& c : contacts_) held_normals_ += c.normal_held ? 1 : 0;
   gather_forces();
   estimate_step();
 }
 
 bool IterativeSolver::moved_beyond_margin() {
   gather_forces();
-  compute_grid(false);
+  compute_grid();
   double largest = 0.0;
   for (std::size_t f = 0; f < fibres_.size(); ++f)
     for (std::size_t j = 0; j < grid_u_[f].size(); ++j)
@@ -233,8 +227,7 @@ std::optional<std::string> IterativeSolver::find_unresolvable() const {
 void IterativeSolver::evaluate() {
   if (!forces_gathered_) gather_forces();
   superposition_.contact_displacements(contacts_, force_on_a_, true, u_a_, u_b_, &exact_energy_);
-  if (detector_.needs_polylines()) compute_grid(true);
-  held_normals_ = detector_.measure(contacts_, u_a_, u_b_, grid_u_);
+  detector_.measure(contacts_, u_a_, u_b_);
   residuals_ = measure_residuals(contacts_);
 }
 
@@ -283,7 +276,6 @@ void IterativeSolver::update_forces() {
     force_on_a_[k] = c.force_on_a();  // gathered here, saving a pass over the contacts
   }
   forces_gathered_ = true;
-  if (detector_.needs_polylines()) superposition_.resort(contacts_);
 }
 
 bool IterativeSolver::record_history(long iteration) const {
@@ -430,12 +422,14 @@ Result IterativeSolver::assemble(Clock::time_point start) {
   r.c_stable_limit = lambda_max_ > 0.0 ? 2.0 / lambda_max_ : 0.0;
   r.axial_load_dropped = superposition_.axial_load_dropped(contacts_, force_on_a_);
   r.warnings = warnings_;
-  if (rebuilds_ > 0 || held_normals_ > 0) {
-    std::ostringstream out;
-    out << "candidate contacts rebuilt " << rebuilds_ << " times; " << held_normals_
-        << " normals held at the end (centres nearly coincident)";
-    if (held_normals_ > 0) r.warnings.push_back(out.str());
-  }
+  if (held_normals_ > 0)
+    r.warnings.push_back(std::to_string(held_normals_) +
+                         " contacts whose undeformed centres nearly coincide: their normal was "
+                         "chosen, not measured, and the contact side is ambiguous");
+  if (scene_.contact.friction > 0.0)
+    r.warnings.push_back(
+        "contact normals do not turn (they are those of the undeformed fibres), so the friction "
+        "of §4.3.4, which keeps the previous resultant across a turn, exerts no force");
 
   r.stages.push_back("superposition");
   if (detector_.broad_phase()) r.stages.push_back("broad_phase");

@@ -97,21 +97,6 @@ void Superposition::attach(const std::vector<Contact>& contacts) {
     });
 }
 
-void Superposition::resort(const std::vector<Contact>& contacts) {
-  for (std::size_t i = 0; i < fibres_.size(); ++i) {
-    auto& list = slots_[i];
-    for (Slot& slot : list) {
-      if (slot.contact < 0) continue;
-      const Contact& k = contacts[slot.contact];
-      slot.a = (slot.sign > 0 ? k.s_a : k.s_b) * fibres_[i].length;
-    }
-    // Nearly sorted already: insertion sort is O(k) here.
-    for (std::size_t j = 1; j < list.size(); ++j)
-      for (std::size_t m = j; m > 0 && list[m].a < list[m - 1].a; --m)
-        std::swap(list[m], list[m - 1]);
-  }
-}
-
 // Inline: it is the first half of the inner loop of every evaluation.
 inline void Superposition::load_components(int fibre,
                                            const std::vector<Eigen::Vector3d>& force_on_a,

@@ -19,8 +19,6 @@ class Superposition {
 
   /// Registers the contacts' load points on their fibres (call when the contact list changes).
   void attach(const std::vector<Contact>& contacts);
-  /// Keeps each fibre's load points sorted after point contacts moved along the fibres.
-  void resort(const std::vector<Contact>& contacts);
 
   /// Displacements (mm) of fibre A's and fibre B's centreline at every contact, under the contact
   /// forces `force_on_a` (what fibre A receives; B receives the opposite) and, if `external`, the

@@ -233,6 +233,27 @@ TEST(GroundTruth, CompactionTestCase) {
       EXPECT_LT(u.norm(), 1e-12);
 }
 
+// Fibre B rests across fibre A at 0.3 of A's length (just touching); a point load P on B at the
+// crossing presses it onto A. Small-deflection contact keeps the contact where the fibres cross, so
+// the two beams share P by their compliances: R = P·C_B/(C_A + C_B) reaches A.
+TEST(GroundTruth, LoadedCrossingSharesTheLoadByCompliance) {
+  Scene s = testing::crossing(0.3, 0.6, 0.0);
+  s.solver.overlap_tolerance = 1e-13;
+  LoadSpec load;
+  load.fibre = "B";
+  load.position = 0.6;
+  const double P = 1e-4;
+  load.force = {0, 0, -P};
+  s.loads.push_back(load);
+  const double EI = testing::bending_stiffness(0.01, 80000);
+  const double CA = compliance(0.3, 1.0, EI), CB = compliance(0.6, 1.0, EI);
+  const Result r = solve(s);
+  ASSERT_EQ(r.status, "converged") << r.message;
+  ASSERT_EQ(r.contacts.size(), 1u);
+  EXPECT_NEAR(r.contacts[0].total_force, P * CB / (CA + CB), 1e-8 * P);
+  EXPECT_NEAR(r.contacts[0].points[0].position, 0.3, 1e-12);
+}
+
 // A fibre with a point load P at mid-span above a wall with gap g < P·C: the mid-span slice
 // touches the wall and carries R = P − g/C(L/2); nothing else touches.
 TEST(GroundTruth, FibrePressedOntoAWall) {
