@@ -2,6 +2,7 @@
 
 #include <deal.II/base/mpi.h>
 
+#include <filesystem>
 #include <iostream>
 
 #include "exit_codes.h"
@@ -16,8 +17,8 @@ namespace fibrecheck {
 
 void add_fem_command(CLI::App& app, int& exit_code) {
   struct Arguments {
-    std::string scene, out, vtk;
-    int slices = 0;
+    std::string scene, out, vtk, line_contact = "slices";
+    int slices = 0, refine = 0;
     bool quiet = false;
   };
   auto args = std::make_shared<Arguments>();
@@ -27,7 +28,21 @@ void add_fem_command(CLI::App& app, int& exit_code) {
   fem->add_option("--out", args->out, "Result file (JSON)");
   fem->add_option("--slices", args->slices, "Cross-sections n (overrides contact.slices)")
       ->check(CLI::Range(1, 1000000));
-  fem->add_option("--vtk", args->vtk, "ParaView file (.vtp) of fibres and contact forces");
+  fem->add_option("--line-contact", args->line_contact,
+                  "Line contacts at the n slices (as the iterative solver) or continuous (Gauss "
+                  "points of n*2^K cells)")
+      ->check(CLI::IsMember({"slices", "continuous"}));
+  fem->add_option("--refine", args->refine,
+                  "Refinements K: elements (and continuous-mode cells) 2^K times smaller")
+      ->check(CLI::Range(0, 12));
+  fem->add_option("--vtk", args->vtk,
+                  "ParaView file: .vtu = the finite-element beams (w, M, displacement), .vtp = "
+                  "fibres and contact forces")
+      ->check([](const std::string& path) -> std::string {
+        const auto dot = path.rfind('.');
+        const std::string ext = dot == std::string::npos ? "" : path.substr(dot);
+        return ext == ".vtu" || ext == ".vtp" ? "" : "--vtk: the file must end in .vtu or .vtp";
+      });
   fem->add_flag("--quiet,-q", args->quiet, "Print nothing but errors");
   fem->callback([args, &exit_code] {
     Scene scene;
@@ -35,6 +50,14 @@ void add_fem_command(CLI::App& app, int& exit_code) {
       scene = read_scene(args->scene);
       if (args->slices > 0) scene.contact.slices = args->slices;
       validate_scene(scene);
+      // Output folders exist before the run, so that it cannot fail at the end for want of one.
+      for (const std::string& path : {args->out, args->vtk}) {
+        const std::filesystem::path folder = std::filesystem::path(path).parent_path();
+        std::error_code error;
+        if (!path.empty() && !folder.empty() && !std::filesystem::is_directory(folder) &&
+            !std::filesystem::create_directories(folder, error))
+          throw InputError(path, "", "cannot create its folder: " + error.message());
+      }
     } catch (const InputError& e) {
       std::cerr << "fibrecheck fem: error: " << e.what() << "\n";
       exit_code = kExitBadInput;
@@ -45,7 +68,27 @@ void add_fem_command(CLI::App& app, int& exit_code) {
     char* argv_storage[] = {name, nullptr};
     char** argv = argv_storage;
     dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
-    const Result result = solve_reference(scene);
+    // Every process computes the same result; the first one speaks and writes.
+    const bool first = dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
+    const bool vtu = args->vtk.size() > 4 && args->vtk.substr(args->vtk.size() - 4) == ".vtu";
+    ReferenceOptions options;
+    options.line_contact =
+        args->line_contact == "continuous" ? LineContact::continuous : LineContact::slices;
+    options.refine = args->refine;
+    if (vtu) options.vtu = args->vtk;
+    options.print_timing = !args->quiet;
+    if (!args->quiet && first)
+      options.progress = [](const std::string& line) { std::cerr << "  " << line << "\n"; };
+    Result result;
+    try {
+      result = solve_reference(scene, options);
+    } catch (const std::exception& e) {
+      std::cerr << "fibrecheck fem: error: " << e.what() << "\n";
+      exit_code = kExitFailure;
+      return;
+    }
+    exit_code = result.status == "converged" ? kExitConverged : kExitUnsolved;
+    if (!first) return;
     if (!args->quiet) {
       std::cout << "scene " << scene.name << ": finite-element reference, " << scene.fibres.size()
                 << " fibres\n  " << brief_report(result) << "\n";
@@ -53,13 +96,12 @@ void add_fem_command(CLI::App& app, int& exit_code) {
     }
     try {
       if (!args->out.empty()) write_result(args->out, result);
-      if (!args->vtk.empty()) write_vtk(args->vtk, scene, result);
+      if (!args->vtk.empty() && !vtu) write_vtk(args->vtk, scene, result);
     } catch (const std::exception& e) {
       std::cerr << "fibrecheck fem: error: " << e.what() << "\n";
       exit_code = kExitBadInput;
       return;
     }
-    exit_code = result.status == "converged" ? kExitConverged : kExitUnsolved;
   });
 }
 

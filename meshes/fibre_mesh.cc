@@ -70,7 +70,7 @@ std::vector<FibreStations> mesh_stations(const Scene& scene, const MeshOptions& 
     if (detector.slicing() && fibres[i].along_tow_axis) {
       const Eigen::Vector3d axis = scene.contact.axis.normalized();
       const double along = (fibres[i].end - fibres[i].start).dot(axis);
-      for (int j = 0; j < n; ++j) {
+      for (int j = 0; j < detector.slice_count(); ++j) {
         const double s = (detector.slice_position(j) - fibres[i].start.dot(axis)) / along;
         if (s > 0.0 && s < 1.0) add_station(f, s, false);
       }
@@ -101,6 +101,7 @@ void write_mesh(const Scene& scene, const MeshOptions& options, const std::strin
   gmsh::option::setNumber("Mesh.MshFileVersion", 4.1);
   gmsh::model::add(scene.name);
   for (std::size_t i = 0; i < scene.fibres.size(); ++i) {
+    if (!options.fibres.empty() && !options.fibres[i]) continue;
     const FibreSpec& spec = scene.fibres[i];
     const FibreStations& f = stations[i];
     const std::vector<double> size = station_sizes(f, options);

@@ -16,6 +16,8 @@ struct MeshOptions {
   /// Further stations per fibre (fractions of its length), e.g. the contact points a solver found
   /// on the deformed fibres (refined like contacts) and the result's sample positions.
   std::vector<std::vector<double>> contact_stations, sample_stations;
+  /// Which fibres to mesh (by index in the scene); empty: all of them.
+  std::vector<char> fibres;
 };
 
 /// The points of one fibre where the mesh must have nodes (fractions of its length from start):

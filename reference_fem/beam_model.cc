@@ -14,6 +14,9 @@
 #include <deal.II/lac/petsc_sparse_matrix.h>
 #include <deal.II/lac/petsc_vector.h>
 #include <deal.II/lac/solver_control.h>
+#include <deal.II/lac/vector.h>
+#include <deal.II/numerics/data_out.h>
+#include <deal.II/numerics/data_postprocessor.h>
 #include <petscksp.h>
 
 #include <cmath>
@@ -51,6 +54,31 @@ std::map<std::string, int> curve_tags(const std::string& mesh_file) {
   }
   return tags;
 }
+/// The displacement vector u = w1·e1 + w2·e2 (mm), in each fibre's own frame, for ParaView's
+/// "Warp by vector".
+class Displacement : public DataPostprocessorVector<3> {
+ public:
+  Displacement(const std::vector<Fibre>& fibres,
+               const std::map<types::material_id, int>& fibre_of_material)
+      : DataPostprocessorVector<3>("displacement", update_values),
+        fibres_(fibres),
+        fibre_of_material_(fibre_of_material) {}
+
+  void evaluate_vector_field(const DataPostprocessorInputs::Vector<3>& inputs,
+                             std::vector<Vector<double>>& computed) const override {
+    const Fibre& f = fibres_[fibre_of_material_.at(inputs.template get_cell<1>()->material_id())];
+    for (std::size_t q = 0; q < computed.size(); ++q) {
+      const Eigen::Vector3d u =
+          inputs.solution_values[q][kW[0]] * f.e1 + inputs.solution_values[q][kW[1]] * f.e2;
+      for (unsigned int d = 0; d < 3; ++d) computed[q][d] = u[d];
+    }
+  }
+
+ private:
+  const std::vector<Fibre>& fibres_;
+  const std::map<types::material_id, int>& fibre_of_material_;
+};
+
 }  // namespace
 
 struct BeamModel::Implementation {
@@ -73,11 +101,13 @@ struct BeamModel::Implementation {
   /// Per fibre: node fraction s → the four DoFs (w1, M1, w2, M2) of that vertex.
   std::vector<std::map<double, std::array<types::global_dof_index, 4>>> nodes;
 
-  Implementation(const Scene& s, const std::string& mesh_file) : scene(s) {
+  Implementation(const Scene& s, const std::string& mesh_file, const std::vector<char>& meshed)
+      : scene(s) {
     for (const FibreSpec& spec : scene.fibres)
       fibres.push_back(make_fibre(spec, scene.contact.axis, scene.contact.parallel_angle_deg));
     const auto tags = curve_tags(mesh_file);
     for (std::size_t i = 0; i < fibres.size(); ++i) {
+      if (!meshed.empty() && !meshed[i]) continue;
       auto it = tags.find(fibres[i].id);
       if (it == tags.end())
         throw InputError(mesh_file, fibres[i].id, "no physical curve for this fibre");
@@ -213,8 +243,9 @@ struct BeamModel::Implementation {
   }
 };
 
-BeamModel::BeamModel(const Scene& scene, const std::string& mesh_file)
-    : impl_(std::make_unique<Implementation>(scene, mesh_file)) {}
+BeamModel::BeamModel(const Scene& scene, const std::string& mesh_file,
+                     const std::vector<char>& fibres)
+    : impl_(std::make_unique<Implementation>(scene, mesh_file, fibres)) {}
 
 BeamModel::~BeamModel() = default;
 
@@ -235,6 +266,36 @@ Eigen::Vector3d BeamModel::displacement(int fibre, double s) const {
 
 std::size_t BeamModel::unknowns() const {
   return impl_->dof_handler.n_dofs();
+}
+
+void BeamModel::setup_system() {
+  if (impl_->dof_handler.n_dofs() == 0) impl_->setup_system();
+}
+
+void BeamModel::write_vtu(const std::string& path, const std::string& record,
+                          const std::vector<std::string>& pieces) const {
+  const Implementation& m = *impl_;
+  // The finite-element solution itself, interpolated to the mesh nodes.
+  Vector<double> values(m.dof_handler.n_dofs());
+  for (types::global_dof_index i = 0; i < values.size(); ++i) values[i] = m.solution(i);
+  const Displacement displacement(m.fibres, m.fibre_of_material);
+  DataOut<1, 3> data_out;
+  data_out.attach_dof_handler(m.dof_handler);
+  data_out.add_data_vector(values, std::vector<std::string>{"w1", "M1", "w2", "M2"});
+  data_out.add_data_vector(values, displacement);
+  Vector<double> fibre(m.triangulation.n_active_cells());
+  for (const auto& cell : m.triangulation.active_cell_iterators())
+    fibre[cell->active_cell_index()] = m.fibre_of_material.at(cell->material_id());
+  data_out.add_data_vector(fibre, "fibre", DataOut<1, 3>::type_cell_data);
+  data_out.build_patches();
+  std::ofstream out(path);
+  if (!out) throw std::runtime_error("cannot write " + path);
+  data_out.write_vtu(out);
+  if (!record.empty()) {
+    std::ofstream collection(record);
+    if (!collection) throw std::runtime_error("cannot write " + record);
+    data_out.write_pvtu_record(collection, pieces);
+  }
 }
 
 }  // namespace fibrecheck

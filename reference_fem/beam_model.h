@@ -27,12 +27,17 @@ struct NodalForce {
 /// loads at nodes and uniform loads (Eqs. 4.10–4.13).
 ///
 /// Like deal.II's tutorial programs, only `run()` does the work: make_grid, setup_system,
-/// assemble_system, solve.
+/// assemble_system, solve. The fibres do not interact through the beams, so the mesh may hold any
+/// subset of them: a process can solve its own fibres alone.
 class BeamModel {
  public:
-  /// Reads the fibres' mesh (written by `write_mesh`) for the scene.
-  BeamModel(const Scene& scene, const std::string& mesh_file);
+  /// Reads the fibres' mesh (written by `write_mesh`) for the scene; `fibres` marks the fibres the
+  /// mesh holds (by index in the scene; empty: all of them).
+  BeamModel(const Scene& scene, const std::string& mesh_file, const std::vector<char>& fibres = {});
   ~BeamModel();
+
+  /// Degrees of freedom, supports and the sparsity pattern (done by the first `run` otherwise).
+  void setup_system();
 
   /// Solves under `extra` forces at mesh nodes, plus the scene's own loads if `scene_loads`.
   void run(const std::vector<NodalForce>& extra = {}, bool scene_loads = true);
@@ -43,6 +48,12 @@ class BeamModel {
 
   /// Number of unknowns (both planes, w and M).
   std::size_t unknowns() const;
+
+  /// Writes the last solution (deflections w1, w2 and moments M1, M2 in each fibre's two bending
+  /// planes, the displacement vector and the fibre's index) on the mesh as a ParaView .vtu file;
+  /// with `record` also a .pvtu file that collects the .vtu files `pieces` (of several processes).
+  void write_vtu(const std::string& path, const std::string& record = "",
+                 const std::vector<std::string>& pieces = {}) const;
 
  private:
   struct Implementation;

@@ -1,12 +1,21 @@
 #include "reference_solver.h"
 
+#include <deal.II/base/conditional_ostream.h>
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/timer.h>
+#include <deal.II/base/utilities.h>
 #include <unistd.h>
 
 #include <Eigen/Dense>
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <map>
 #include <set>
+#include <sstream>
 
 #include "beam_model.h"
 #include "contact_detection.h"
@@ -20,45 +29,78 @@ namespace fibrecheck {
 namespace {
 
 /// The contact problem P ≥ 0, d = d0 − W·P ≤ 0, P·d = 0 is the quadratic programme
-/// min ½PᵀWP − Pᵀd0 over P ≥ 0. Solved exactly by an active-set method in the manner of
-/// Lawson–Hanson's non-negative least squares: add the contact with the largest remaining overlap
-/// to the set of pushing contacts, solve W_SS·P_S = d0_S, step back to feasibility when a force
-/// would turn negative, and repeat until no overlap above `tolerance` is left. It terminates in a
-/// finite number of steps for positive definite W (no cycling, unlike the plain primal–dual
-/// active set on a dense W).
+/// min ½PᵀWP − Pᵀd0 over P ≥ 0, solved exactly by an active-set method in the manner of
+/// Lawson–Hanson's non-negative least squares: add the contacts that still overlap by more than
+/// `tolerance` to the set of pushing contacts, solve W_SS·P_S = d0_S, step back to feasibility
+/// when a force would turn negative, and repeat. Each pass lowers the objective strictly, so no
+/// set comes back and the method ends in a finite number of passes (the plain primal–dual active
+/// set cycles on a dense W). `pushing` holds a first guess of the set (the last outer iteration's)
+/// on entry and the final set on return. Returns false on a singular set (`singular` set) or when
+/// `max_iterations` passes were not enough.
 bool active_set_solve(const Eigen::MatrixXd& W, const Eigen::VectorXd& d0, double tolerance,
-                      int max_iterations, Eigen::VectorXd& P, int& iterations) {
+                      int max_iterations, Eigen::VectorXd& P, std::vector<char>& pushing,
+                      int& iterations, bool& singular) {
   const Eigen::Index n = d0.size();
   P = Eigen::VectorXd::Zero(n);
+  pushing.resize(n, 0);
   iterations = 0;
+  singular = false;
   if (n == 0) return true;
-  std::vector<char> pushing(n, 0);
   auto solve_on_set = [&](Eigen::VectorXd& z) {
     std::vector<Eigen::Index> index;
     for (Eigen::Index k = 0; k < n; ++k)
       if (pushing[k]) index.push_back(k);
     z = Eigen::VectorXd::Zero(n);
     const Eigen::Index m = static_cast<Eigen::Index>(index.size());
-    if (m == 0) return;
+    if (m == 0) return true;
     Eigen::MatrixXd Wss(m, m);
     Eigen::VectorXd ds(m);
     for (Eigen::Index i = 0; i < m; ++i) {
       ds[i] = d0[index[i]];
       for (Eigen::Index j = 0; j < m; ++j) Wss(i, j) = W(index[i], index[j]);
     }
-    const Eigen::VectorXd zs = Wss.ldlt().solve(ds);
+    const Eigen::LDLT<Eigen::MatrixXd> ldlt(Wss);
+    const Eigen::VectorXd zs = ldlt.solve(ds);
+    if (ldlt.info() != Eigen::Success || !zs.allFinite() ||
+        ldlt.vectorD().minCoeff() <= 1e-14 * ldlt.vectorD().maxCoeff())
+      return false;
     for (Eigen::Index i = 0; i < m; ++i) z[index[i]] = zs[i];
+    return true;
   };
   Eigen::VectorXd z;
+  // Warm start: the guessed set, less the contacts that would pull, until all push.
+  for (;;) {
+    if (!solve_on_set(z)) {
+      singular = true;
+      return false;
+    }
+    bool pulled = false;
+    for (Eigen::Index k = 0; k < n; ++k)
+      if (pushing[k] && z[k] <= 0.0) pushing[k] = 0, pulled = true;
+    if (!pulled) break;
+  }
+  P = z;
+  // Passes add every overlapping contact at once; when that gains nothing (an added contact
+  // would pull at once, and the step back leaves P where it was), the next pass adds only the
+  // most overlapping one, for which Lawson–Hanson's argument guarantees progress.
+  bool one_at_a_time = false;
   for (iterations = 1; iterations <= max_iterations; ++iterations) {
     const Eigen::VectorXd d = d0 - W * P;
-    Eigen::Index j = -1;
-    double worst = tolerance;
+    Eigen::Index worst = -1;
     for (Eigen::Index k = 0; k < n; ++k)
-      if (!pushing[k] && d[k] > worst) worst = d[k], j = k;
-    if (j < 0) return true;
-    pushing[j] = 1;
-    solve_on_set(z);
+      if (!pushing[k] && d[k] > tolerance && (worst < 0 || d[k] > d[worst])) worst = k;
+    if (worst < 0) return true;
+    if (one_at_a_time) {
+      pushing[worst] = 1;
+    } else {
+      for (Eigen::Index k = 0; k < n; ++k)
+        if (!pushing[k] && d[k] > tolerance) pushing[k] = 1;
+    }
+    const Eigen::VectorXd P_before = P;
+    if (!solve_on_set(z)) {
+      singular = true;
+      return false;
+    }
     for (int inner = 0; inner < n + 1; ++inner) {
       double alpha = 1.0;
       bool blocked = false;
@@ -71,189 +113,488 @@ bool active_set_solve(const Eigen::MatrixXd& W, const Eigen::VectorXd& d0, doubl
       P += alpha * (z - P);
       for (Eigen::Index k = 0; k < n; ++k)
         if (pushing[k] && P[k] <= 1e-300) pushing[k] = 0, P[k] = 0.0;
-      solve_on_set(z);
+      if (!solve_on_set(z)) {
+        singular = true;
+        return false;
+      }
     }
     P = z.cwiseMax(0.0);
+    const double before_objective = 0.5 * P_before.dot(W * P_before) - P_before.dot(d0);
+    const double objective = 0.5 * P.dot(W * P) - P.dot(d0);
+    one_at_a_time = !(objective < before_objective - 1e-14 * std::fabs(before_objective));
   }
   return false;
 }
 
-std::string temporary_mesh_path() {
-  return (std::filesystem::temp_directory_path() /
-          ("fibrecheck_reference_" + std::to_string(getpid()) + ".msh"))
-      .string();
+void sum_over_processes(std::vector<double>& values, MPI_Comm comm) {
+  if (dealii::Utilities::MPI::n_mpi_processes(comm) > 1 && !values.empty())
+    MPI_Allreduce(MPI_IN_PLACE, values.data(), static_cast<int>(values.size()), MPI_DOUBLE, MPI_SUM,
+                  comm);
 }
 
-}  // namespace
+/// The reference solver's state; like deal.II's tutorial programs, `run()` calls the phases.
+class ReferenceSolver {
+ public:
+  ReferenceSolver(const Scene& scene, const ReferenceOptions& options);
+  ~ReferenceSolver();
+  Result run();
 
-Result solve_reference(const Scene& scene, const ReferenceOptions& options) {
-  const auto start = std::chrono::steady_clock::now();
-  std::vector<Fibre> fibres;
-  double smallest_radius = INFINITY;
-  for (const FibreSpec& spec : scene.fibres) {
-    fibres.push_back(make_fibre(spec, scene.contact.axis, scene.contact.parallel_angle_deg));
-    smallest_radius = std::min(smallest_radius, spec.radius);
+ private:
+  void make_grid();
+  void setup_system();
+  void assemble_system();
+  void solve();
+  bool update_active_set();
+  void output_results(Result& r);
+
+  void detect();
+  int station(int fibre, double s) const;
+  Eigen::Vector3d packed(const std::vector<double>& u, int fibre, int station) const {
+    const double* v = &u[3 * (offset_[fibre] + station)];
+    return {v[0], v[1], v[2]};
   }
-  const double tolerance = scene.overlap_tolerance();
-  Superposition superposition(fibres, scene);  // contact geometry of the deformed fibres only
-  ContactDetector detector(fibres, scene, 0.1 * smallest_radius);
+  double smallest_radius() const {
+    double r = INFINITY;
+    for (const Fibre& f : fibres_) r = std::min(r, f.radius);
+    return r;
+  }
+
+  const Scene& scene_;
+  ReferenceOptions options_;
+  MPI_Comm comm_ = MPI_COMM_WORLD;
+  unsigned int rank_ = 0, processes_ = 1;
+  dealii::ConditionalOStream pcout_;
+  dealii::TimerOutput timer_;
+  std::vector<Fibre> fibres_;
+  std::vector<char> owned_;  ///< fibres this process meshes and solves
+  double tolerance_;
+  Superposition superposition_;  ///< contact geometry of the deformed fibres only
+  ContactDetector detector_;
+  std::vector<double> sample_s_;
+
+  std::vector<Contact> contacts_;
+  std::vector<Eigen::Vector3d> force_on_a_;
+  /// Per fibre, the sorted fractions where contacts act on it; per contact, its stations on A, B.
+  std::vector<std::vector<double>> stations_;
+  std::vector<int> station_a_, station_b_;
+  std::vector<std::size_t> offset_, g_offset_;  ///< per fibre, into packed station data and G
+  std::string mesh_file_;
+  std::unique_ptr<BeamModel> model_;
+  std::vector<double> u0_;  ///< displacements at every station under the scene's loads
+  Eigen::VectorXd d0_, P_;
+  Eigen::MatrixXd W_;
+  std::vector<char> pushing_;
+  long active_set_iterations_ = 0;
+  std::string trouble_;  ///< why the problem could not be solved, if it could not
+};
+
+ReferenceSolver::ReferenceSolver(const Scene& scene, const ReferenceOptions& options)
+    : scene_(scene),
+      options_(options),
+      rank_(dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD)),
+      processes_(dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD)),
+      pcout_(std::cout, options.print_timing && rank_ == 0),
+      timer_(MPI_COMM_WORLD, pcout_, dealii::TimerOutput::never,
+             dealii::TimerOutput::wall_times),
+      fibres_([&] {
+        std::vector<Fibre> f;
+        for (const FibreSpec& spec : scene.fibres)
+          f.push_back(make_fibre(spec, scene.contact.axis, scene.contact.parallel_angle_deg));
+        return f;
+      }()),
+      tolerance_(scene.overlap_tolerance()),
+      superposition_(fibres_, scene),
+      detector_(fibres_, scene, 0.1 * smallest_radius()) {
+  if (options_.line_contact == LineContact::continuous)
+    detector_.use_gauss_stations(scene.contact.slices << options_.refine);
+  owned_.assign(fibres_.size(), 0);
+  for (std::size_t f = rank_; f < fibres_.size(); f += processes_) owned_[f] = 1;
   const int samples = scene.output.samples;
-  std::vector<double> sample_s(samples);
-  for (int j = 0; j < samples; ++j) sample_s[j] = static_cast<double>(j) / (samples - 1);
+  for (int j = 0; j < samples; ++j) sample_s_.push_back(static_cast<double>(j) / (samples - 1));
+  mesh_file_ = (std::filesystem::temp_directory_path() /
+                ("fibrecheck_reference_" + std::to_string(getpid()) + "_" +
+                 std::to_string(rank_) + ".msh"))
+                   .string();
+}
 
-  std::vector<Contact> contacts;
-  std::vector<Eigen::Vector3d> force_on_a, u_a, u_b;
-  auto gather = [&] {
-    force_on_a.resize(contacts.size());
-    for (std::size_t k = 0; k < contacts.size(); ++k) force_on_a[k] = contacts[k].force_on_a();
-  };
-  // Candidates on the fibres deformed by the current forces; pushing contacts keep their state.
-  auto detect = [&] {
-    superposition.attach(contacts);
-    gather();
-    std::vector<std::vector<Eigen::Vector3d>> grid(fibres.size());
-    for (std::size_t f = 0; f < fibres.size(); ++f)
-      superposition.fibre_field(static_cast<int>(f), contacts, force_on_a, true, detector.grid(),
-                                grid[f]);
-    std::vector<Contact> found = detector.detect(grid);
-    std::map<std::uint64_t, const Contact*> previous;
-    for (const Contact& c : contacts) previous[c.key()] = &c;
-    for (Contact& c : found) {
-      auto it = previous.find(c.key());
-      if (it == previous.end()) continue;
-      c.force = it->second->force;
-      previous.erase(it);
+ReferenceSolver::~ReferenceSolver() {
+  std::error_code ignored;
+  std::filesystem::remove(mesh_file_, ignored);
+}
+
+int ReferenceSolver::station(int fibre, double s) const {
+  const std::vector<double>& list = stations_[fibre];
+  return static_cast<int>(std::lower_bound(list.begin(), list.end(), s - 1e-12) - list.begin());
+}
+
+// Candidates on the fibres deformed by the current forces (the iterative solver's detection);
+// a contact found again keeps its force, and a pushing contact stays a candidate.
+void ReferenceSolver::detect() {
+  superposition_.attach(contacts_);
+  force_on_a_.resize(contacts_.size());
+  for (std::size_t k = 0; k < contacts_.size(); ++k) force_on_a_[k] = contacts_[k].force_on_a();
+  std::vector<std::vector<Eigen::Vector3d>> grid(fibres_.size());
+  for (std::size_t f = 0; f < fibres_.size(); ++f)
+    superposition_.fibre_field(static_cast<int>(f), contacts_, force_on_a_, true, detector_.grid(),
+                               grid[f]);
+  std::vector<Contact> found = detector_.detect(grid);
+  std::map<std::uint64_t, const Contact*> previous;
+  for (const Contact& c : contacts_) previous[c.key()] = &c;
+  for (Contact& c : found) {
+    auto it = previous.find(c.key());
+    if (it == previous.end()) continue;
+    c.force = it->second->force;
+    previous.erase(it);
+  }
+  for (const auto& [key, c] : previous)
+    if (c->force > 0.0) found.push_back(*c);
+  contacts_ = std::move(found);
+}
+
+// make_grid: this process's fibres, with nodes at every contact station and sample position,
+// meshed by Gmsh and read by deal.II.
+void ReferenceSolver::make_grid() {
+  dealii::TimerOutput::Scope scope(timer_, "make_grid");
+  stations_.assign(fibres_.size(), {});
+  for (const Contact& c : contacts_) {
+    stations_[c.a].push_back(c.s_a);
+    if (c.kind != ContactKind::wall) stations_[c.b].push_back(c.s_b);
+  }
+  offset_.assign(fibres_.size() + 1, 0);
+  g_offset_.assign(fibres_.size() + 1, 0);
+  for (std::size_t f = 0; f < fibres_.size(); ++f) {
+    std::vector<double>& list = stations_[f];
+    std::sort(list.begin(), list.end());
+    list.erase(std::unique(list.begin(), list.end(),
+                           [](double x, double y) { return std::fabs(x - y) < 1e-12; }),
+               list.end());
+    offset_[f + 1] = offset_[f] + list.size();
+    g_offset_[f + 1] = g_offset_[f] + list.size() * list.size();
+  }
+  station_a_.resize(contacts_.size());
+  station_b_.resize(contacts_.size());
+  for (std::size_t k = 0; k < contacts_.size(); ++k) {
+    station_a_[k] = station(contacts_[k].a, contacts_[k].s_a);
+    station_b_[k] =
+        contacts_[k].kind == ContactKind::wall ? -1 : station(contacts_[k].b, contacts_[k].s_b);
+  }
+  model_.reset();
+  if (std::none_of(owned_.begin(), owned_.end(), [](char o) { return o != 0; })) return;
+  MeshOptions mesh;
+  mesh.size_per_slice = std::ldexp(1.0, -options_.refine);
+  mesh.contact_stations = stations_;
+  mesh.sample_stations.assign(fibres_.size(), sample_s_);
+  mesh.fibres = owned_;
+  write_mesh(scene_, mesh, mesh_file_);
+  model_ = std::make_unique<BeamModel>(scene_, mesh_file_, owned_);
+}
+
+// setup_system: degrees of freedom, supports, the sparsity pattern.
+void ReferenceSolver::setup_system() {
+  dealii::TimerOutput::Scope scope(timer_, "setup_system");
+  if (model_) model_->setup_system();
+}
+
+// assemble_system: the overlaps d0 under the scene's loads and the compliance matrix W, from
+// finite-element solutions. The fibres do not interact through the beams, so one solve can carry a
+// unit load on every fibre at once: solve i loads the i-th station of each fibre and gives the
+// i-th column of every fibre's influence matrix G_f (mm/N, the same in both bending planes).
+// Then W_jk = Σ_f α_j α_k G_f(j, k) n_j⊥·n_k⊥ over the fibres both contacts act on, α = ∓1 on
+// fibre A and B (+1 for a wall) and ⊥ the part across the fibre.
+void ReferenceSolver::assemble_system() {
+  dealii::TimerOutput::Scope scope(timer_, "assemble_system");
+  u0_.assign(3 * offset_.back(), 0.0);
+  std::vector<double> G(g_offset_.back(), 0.0);
+  if (model_) {
+    model_->run({}, true);
+    std::size_t most = 0;
+    for (std::size_t f = 0; f < fibres_.size(); ++f)
+      if (owned_[f]) {
+        most = std::max(most, stations_[f].size());
+        for (std::size_t i = 0; i < stations_[f].size(); ++i) {
+          const Eigen::Vector3d u = model_->displacement(static_cast<int>(f), stations_[f][i]);
+          for (int d = 0; d < 3; ++d) u0_[3 * (offset_[f] + i) + d] = u[d];
+        }
+      }
+    std::vector<NodalForce> unit;
+    for (std::size_t i = 0; i < most; ++i) {
+      unit.clear();
+      for (std::size_t f = 0; f < fibres_.size(); ++f)
+        if (owned_[f] && i < stations_[f].size())
+          unit.push_back({static_cast<int>(f), stations_[f][i], fibres_[f].e1});
+      model_->run(unit, false);
+      for (std::size_t f = 0; f < fibres_.size(); ++f) {
+        const std::size_t m = stations_[f].size();
+        if (!owned_[f] || i >= m) continue;
+        for (std::size_t j = 0; j < m; ++j)
+          G[g_offset_[f] + j * m + i] =
+              model_->displacement(static_cast<int>(f), stations_[f][j]).dot(fibres_[f].e1);
+      }
     }
-    for (const auto& [key, c] : previous)
-      if (c->force > 0.0) found.push_back(*c);
-    contacts = std::move(found);
-  };
+  }
+  sum_over_processes(u0_, comm_);
+  sum_over_processes(G, comm_);
 
+  const Eigen::Index n = static_cast<Eigen::Index>(contacts_.size());
+  d0_.resize(n);
+  struct Side {
+    Eigen::Index contact;
+    int station;
+    double alpha;
+  };
+  std::vector<std::vector<Side>> sides(fibres_.size());
+  for (Eigen::Index k = 0; k < n; ++k) {
+    const Contact& c = contacts_[k];
+    const bool wall = c.kind == ContactKind::wall;
+    d0_[k] = detector_.overlap_along_normal(c, packed(u0_, c.a, station_a_[k]),
+                                            wall ? Eigen::Vector3d::Zero().eval()
+                                                 : packed(u0_, c.b, station_b_[k]));
+    sides[c.a].push_back({k, station_a_[k], wall ? 1.0 : -1.0});
+    if (!wall) sides[c.b].push_back({k, station_b_[k], 1.0});
+  }
+  W_ = Eigen::MatrixXd::Zero(n, n);
+  for (std::size_t f = 0; f < fibres_.size(); ++f) {
+    const std::size_t m = stations_[f].size();
+    const Eigen::Vector3d t = fibres_[f].t;
+    for (const Side& j : sides[f]) {
+      const Eigen::Vector3d nj = contacts_[j.contact].normal;
+      const Eigen::Vector3d nj_across = nj - nj.dot(t) * t;
+      for (const Side& k : sides[f]) {
+        const Eigen::Vector3d nk = contacts_[k.contact].normal;
+        W_(j.contact, k.contact) += j.alpha * k.alpha * G[g_offset_[f] + j.station * m + k.station] *
+                                    nj_across.dot(nk - nk.dot(t) * t);
+      }
+    }
+  }
+}
+
+// solve: the complementarity problem, exactly, starting from the last pushing set.
+void ReferenceSolver::solve() {
+  dealii::TimerOutput::Scope scope(timer_, "solve");
+  const Eigen::Index n = d0_.size();
+  // An overlap at a point neither fibre can move (both pinned there) has no answer.
+  double scale = 0.0;
+  for (const Fibre& f : fibres_) scale = std::max(scale, std::pow(f.length, 3) / (48.0 * f.EI));
+  for (Eigen::Index k = 0; k < n; ++k)
+    if (d0_[k] > tolerance_ && W_(k, k) <= 1e-12 * scale) {
+      std::ostringstream out;
+      out.precision(3);
+      out << "overlap " << d0_[k] << " mm between " << detector_.describe(contacts_[k])
+          << " where neither can move (pinned supports): it cannot be resolved";
+      trouble_ = out.str();
+      return;
+    }
+  pushing_.resize(n, 0);
+  int iterations = 0;
+  bool singular = false;
+  const bool solved = active_set_solve(W_, d0_, 1e-6 * tolerance_,
+                                       options_.max_active_set_iterations, P_, pushing_,
+                                       iterations, singular);
+  active_set_iterations_ += iterations;
+  if (singular)
+    trouble_ = "the pushing contacts' compliance matrix is singular (contacts that constrain the "
+               "same motion twice)";
+  else if (!solved)
+    trouble_ = "the active-set method did not finish in " +
+               std::to_string(options_.max_active_set_iterations) + " passes";
+  for (Eigen::Index k = 0; k < n; ++k) contacts_[k].force = solved ? P_[k] : 0.0;
+}
+
+// update_active_set: candidates again on the deformed fibres. Places and normals are those of the
+// undeformed fibres, so the answer stands unless a new candidate overlaps.
+bool ReferenceSolver::update_active_set() {
+  dealii::TimerOutput::Scope scope(timer_, "update_active_set");
+  std::set<std::uint64_t> known;
+  for (const Contact& c : contacts_) known.insert(c.key());
+  std::map<std::uint64_t, char> was_pushing;
+  for (std::size_t k = 0; k < contacts_.size(); ++k)
+    was_pushing[contacts_[k].key()] = k < pushing_.size() ? pushing_[k] : 0;
+  std::vector<Contact> solved = contacts_;
+  detect();
+  superposition_.attach(contacts_);
+  force_on_a_.resize(contacts_.size());
+  for (std::size_t k = 0; k < contacts_.size(); ++k) force_on_a_[k] = contacts_[k].force_on_a();
+  std::vector<Eigen::Vector3d> ua, ub;
+  superposition_.contact_displacements(contacts_, force_on_a_, true, ua, ub);
+  bool unchanged = true;
+  pushing_.assign(contacts_.size(), 0);
+  for (std::size_t k = 0; k < contacts_.size(); ++k) {
+    const std::uint64_t key = contacts_[k].key();
+    auto it = was_pushing.find(key);
+    if (it != was_pushing.end()) pushing_[k] = it->second;
+    if (known.count(key) == 0 &&
+        detector_.overlap_along_normal(contacts_[k], ua[k], ub[k]) > 1e-6 * tolerance_)
+      unchanged = false;
+  }
+  // Nothing new overlaps: the answer is the one just solved, on the candidates it was solved with.
+  if (unchanged) contacts_ = std::move(solved);
+  return unchanged;
+}
+
+// output_results: the final state from the finite elements.
+void ReferenceSolver::output_results(Result& r) {
+  dealii::TimerOutput::Scope scope(timer_, "output_results");
+  force_on_a_.resize(contacts_.size());
+  for (std::size_t k = 0; k < contacts_.size(); ++k) force_on_a_[k] = contacts_[k].force_on_a();
+  std::vector<NodalForce> forces;
+  for (std::size_t k = 0; k < contacts_.size(); ++k) {
+    const Contact& c = contacts_[k];
+    if (!(c.force > 0.0)) continue;
+    if (owned_[c.a]) forces.push_back({c.a, c.s_a, force_on_a_[k]});
+    if (c.kind != ContactKind::wall && owned_[c.b]) forces.push_back({c.b, c.s_b, -force_on_a_[k]});
+  }
+  const std::size_t samples = sample_s_.size();
+  std::vector<double> u(3 * offset_.back(), 0.0), field(3 * samples * fibres_.size(), 0.0);
+  if (model_) {
+    model_->run(forces, true);
+    for (std::size_t f = 0; f < fibres_.size(); ++f) {
+      if (!owned_[f]) continue;
+      for (std::size_t i = 0; i < stations_[f].size(); ++i) {
+        const Eigen::Vector3d x = model_->displacement(static_cast<int>(f), stations_[f][i]);
+        for (int d = 0; d < 3; ++d) u[3 * (offset_[f] + i) + d] = x[d];
+      }
+      for (std::size_t j = 0; j < samples; ++j) {
+        const Eigen::Vector3d x = model_->displacement(static_cast<int>(f), sample_s_[j]);
+        for (int d = 0; d < 3; ++d) field[3 * (f * samples + j) + d] = x[d];
+      }
+    }
+    if (!options_.vtu.empty()) {
+      if (processes_ == 1) {
+        model_->write_vtu(options_.vtu);
+      } else {
+        // One piece per process, and a record that collects them (written by the first).
+        const std::filesystem::path path(options_.vtu);
+        const auto piece = [&](unsigned int p) {
+          return path.stem().string() + "." + std::to_string(p) + ".vtu";
+        };
+        std::vector<std::string> pieces;
+        for (unsigned int p = 0; p < processes_ && p < fibres_.size(); ++p)
+          pieces.push_back(piece(p));
+        const std::string record =
+            rank_ == 0 ? (path.parent_path() / (path.stem().string() + ".pvtu")).string() : "";
+        model_->write_vtu((path.parent_path() / piece(rank_)).string(), record, pieces);
+      }
+    }
+  }
+  sum_over_processes(u, comm_);
+  sum_over_processes(field, comm_);
+
+  std::vector<Eigen::Vector3d> u_a(contacts_.size(), Eigen::Vector3d::Zero());
+  std::vector<Eigen::Vector3d> u_b(contacts_.size(), Eigen::Vector3d::Zero());
+  r.max_overlap = contacts_.empty() ? 0.0 : -INFINITY;
+  for (std::size_t k = 0; k < contacts_.size(); ++k) {
+    Contact& c = contacts_[k];
+    u_a[k] = packed(u, c.a, station_a_[k]);
+    if (c.kind != ContactKind::wall) u_b[k] = packed(u, c.b, station_b_[k]);
+    c.overlap = detector_.overlap_along_normal(c, u_a[k], u_b[k]);
+    r.max_overlap = std::max(r.max_overlap, c.overlap);
+    if (c.force > 0.0) r.gap_force_residual = std::max(r.gap_force_residual, -c.overlap);
+    r.complementarity_residual = std::max(r.complementarity_residual, std::fabs(c.force * c.overlap));
+  }
+  for (std::size_t f = 0; f < fibres_.size(); ++f) {
+    FibreResult fr;
+    fr.id = fibres_[f].id;
+    for (std::size_t j = 0; j < samples; ++j)
+      fr.displacement.emplace_back(field[3 * (f * samples + j)], field[3 * (f * samples + j) + 1],
+                                   field[3 * (f * samples + j) + 2]);
+    r.fibres.push_back(std::move(fr));
+  }
+  r.contacts = contact_results(contacts_, fibres_, detector_, force_on_a_, u_a, u_b);
+  r.walls = wall_results(contacts_, fibres_, detector_.wall_specs());
+  // Energies of the same loads by the beam formulas, which the elements reproduce at the nodes.
+  superposition_.attach(contacts_);
+  std::vector<Eigen::Vector3d> ua, ub;
+  superposition_.contact_displacements(contacts_, force_on_a_, true, ua, ub,
+                                       &r.strain_energy_exact);
+  r.strain_energy =
+      superposition_.trapezium_energy(contacts_, force_on_a_, scene_.contact.slices);
+  r.axial_load_dropped = superposition_.axial_load_dropped(contacts_, force_on_a_);
+}
+
+Result ReferenceSolver::run() {
+  const auto start = std::chrono::steady_clock::now();
   Result r;
-  r.scene = scene.name;
+  r.scene = scene_.name;
   r.solver = "fem";
   r.rule = "active_set";
   r.status = "max_iterations";
   r.criterion = "max_iterations";
   detect();
-  std::set<std::pair<std::uint64_t, long long>> last_state;
-  int outer = 0, active_set_iterations = 0;
-  const std::string mesh = temporary_mesh_path();
-  std::unique_ptr<BeamModel> model;
-  for (outer = 1; outer <= options.max_outer_iterations; ++outer) {
-    // make_grid: nodes at every contact and sample position.
-    MeshOptions mesh_options;
-    mesh_options.contact_stations.assign(fibres.size(), {});
-    mesh_options.sample_stations.assign(fibres.size(), sample_s);
-    for (const Contact& c : contacts) {
-      mesh_options.contact_stations[c.a].push_back(c.s_a);
-      if (c.kind != ContactKind::wall) mesh_options.contact_stations[c.b].push_back(c.s_b);
+  int outer = 0;
+  for (outer = 1; outer <= options_.max_outer_iterations; ++outer) {
+    make_grid();
+    setup_system();
+    assemble_system();
+    solve();
+    if (!trouble_.empty()) {
+      r.status = r.criterion = "unresolvable";
+      r.message = trouble_;
+      break;
     }
-    write_mesh(scene, mesh_options, mesh);
-    model = std::make_unique<BeamModel>(scene, mesh);
-
-    // The overlaps under the external loads alone, along each contact's normal.
-    model->run({}, true);
-    const Eigen::Index n = static_cast<Eigen::Index>(contacts.size());
-    Eigen::VectorXd d0(n);
-    for (Eigen::Index k = 0; k < n; ++k) {
-      const Contact& c = contacts[k];
-      const Eigen::Vector3d no_displacement = Eigen::Vector3d::Zero();
-      d0[k] = detector.overlap_along_normal(
-          c, model->displacement(c.a, c.s_a),
-          c.kind == ContactKind::wall ? no_displacement : model->displacement(c.b, c.s_b));
+    const bool unchanged = update_active_set();
+    if (options_.progress) {
+      std::size_t active = 0;
+      for (const Contact& c : contacts_) active += c.force > 0.0 ? 1 : 0;
+      options_.progress("outer iteration " + std::to_string(outer) + ": " +
+                        std::to_string(d0_.size()) + " candidates, " + std::to_string(active) +
+                        " pushing, " + std::to_string(active_set_iterations_) +
+                        " active-set passes so far");
     }
-
-    // W column by column: the overlap each unit force pair removes at every contact.
-    Eigen::MatrixXd W(n, n);
-    for (Eigen::Index k = 0; k < n; ++k) {
-      const Contact& c = contacts[k];
-      std::vector<NodalForce> pair = {
-          {c.a, c.s_a, (c.kind == ContactKind::wall ? 1.0 : -1.0) * c.normal}};
-      if (c.kind != ContactKind::wall) pair.push_back({c.b, c.s_b, c.normal});
-      model->run(pair, false);
-      for (Eigen::Index j = 0; j < n; ++j) {
-        const Contact& cj = contacts[j];
-        const Eigen::Vector3d ua = model->displacement(cj.a, cj.s_a);
-        W(j, k) = cj.kind == ContactKind::wall
-                      ? cj.normal.dot(ua)
-                      : cj.normal.dot(model->displacement(cj.b, cj.s_b) - ua);
-      }
-    }
-    Eigen::VectorXd P;
-    int iterations = 0;
-    const bool solved =
-        active_set_solve(W, d0, 1e-6 * tolerance, options.max_active_set_iterations, P, iterations);
-    active_set_iterations += iterations;
-    for (Eigen::Index k = 0; k < n; ++k) contacts[k].force = P[k];
-    if (!solved) break;
-
-    // update_active_set: re-detect on the deformed fibres; stop when nothing moved.
-    std::set<std::pair<std::uint64_t, long long>> state;
-    for (const Contact& c : contacts)
-      if (c.force > 0.0) state.insert({c.key(), std::llround(c.s_a * 1e9)});
-    if (state == last_state) {
+    if (unchanged) {
       r.status = "converged";
       r.criterion = "active_set";
       break;
     }
-    last_state = state;
-    detect();
   }
-  std::filesystem::remove(mesh);
-
-  // output_results: the final state from the finite elements.
-  gather();
-  std::vector<NodalForce> forces;
-  for (std::size_t k = 0; k < contacts.size(); ++k) {
-    const Contact& c = contacts[k];
-    if (!(c.force > 0.0)) continue;
-    forces.push_back({c.a, c.s_a, force_on_a[k]});
-    if (c.kind != ContactKind::wall) forces.push_back({c.b, c.s_b, -force_on_a[k]});
+  if (r.status == "max_iterations") {
+    r.message = "the candidates still changed after " +
+                std::to_string(options_.max_outer_iterations) + " outer iterations";
+    // The last solve used the candidates before the final detection: mesh them again.
+    make_grid();
+    setup_system();
   }
-  if (model) model->run(forces, true);
-  u_a.assign(contacts.size(), Eigen::Vector3d::Zero());
-  u_b.assign(contacts.size(), Eigen::Vector3d::Zero());
-  r.max_overlap = contacts.empty() ? 0.0 : -INFINITY;
-  for (std::size_t k = 0; k < contacts.size() && model; ++k) {
-    Contact& c = contacts[k];
-    u_a[k] = model->displacement(c.a, c.s_a);
-    if (c.kind != ContactKind::wall) u_b[k] = model->displacement(c.b, c.s_b);
-    const double d = detector.overlap_along_normal(c, u_a[k], u_b[k]);
-    c.overlap = d;
-    r.max_overlap = std::max(r.max_overlap, d);
-    if (c.force > 0.0) r.gap_force_residual = std::max(r.gap_force_residual, -d);
-  }
-  for (std::size_t f = 0; f < fibres.size(); ++f) {
-    FibreResult fr;
-    fr.id = fibres[f].id;
-    for (double s : sample_s)
-      fr.displacement.push_back(model ? model->displacement(static_cast<int>(f), s)
-                                      : Eigen::Vector3d::Zero());
-    r.fibres.push_back(std::move(fr));
-  }
-  r.contacts = contact_results(contacts, fibres, detector, force_on_a, u_a, u_b);
-  r.walls = wall_results(contacts, fibres, detector.wall_specs());
-  // Energies of the same loads by the beam formulas, which the elements reproduce at the nodes.
-  superposition.attach(contacts);
-  std::vector<Eigen::Vector3d> ua, ub;
-  superposition.contact_displacements(contacts, force_on_a, true, ua, ub, &r.strain_energy_exact);
-  r.strain_energy = superposition.trapezium_energy(contacts, force_on_a, scene.contact.slices);
-  r.iterations = std::min(outer, options.max_outer_iterations);
+  output_results(r);
+  r.iterations = std::min(outer, options_.max_outer_iterations);
+  r.active_set_iterations = active_set_iterations_;
+  r.unknowns = static_cast<long>(
+      dealii::Utilities::MPI::sum(model_ ? model_->unknowns() : std::size_t(0), comm_));
   r.stages = {"gmsh_mesh", "fem_beams", "active_set"};
-  if (detector.point_search()) r.stages.push_back("point_contacts");
-  if (detector.slicing()) r.stages.push_back("slices");
-  if (detector.walls()) r.stages.push_back("walls");
-  if (scene.contact.friction > 0.0) {
+  if (detector_.point_search()) r.stages.push_back("point_contacts");
+  if (detector_.slicing()) r.stages.push_back("slices");
+  if (detector_.walls()) r.stages.push_back("walls");
+  if (options_.line_contact == LineContact::continuous) r.stages.push_back("continuous_line_contact");
+  if (scene_.contact.friction > 0.0) {
     r.stages.push_back("friction_not_modelled");
     r.warnings.push_back("the reference model is frictionless; contact.friction was ignored");
   }
-  if (r.status == "converged" && r.max_overlap > tolerance)
+  if (r.status == "converged" && r.max_overlap > tolerance_)
     r.warnings.push_back("overlap above the tolerance remains");
-  r.message = "active-set iterations: " + std::to_string(active_set_iterations) +
-              "; unknowns: " + std::to_string(model ? model->unknowns() : 0);
-  r.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (processes_ > 1) r.stages.push_back("mpi_" + std::to_string(processes_) + "_processes");
+  r.wall_time_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  std::ostringstream timing;
+  timing.precision(3);
+  timing << "unknowns " << r.unknowns << ", active-set passes " << active_set_iterations_
+         << "; wall time per phase (s):";
+  for (const auto& [phase, seconds] :
+       timer_.get_summary_data(dealii::TimerOutput::total_wall_time))
+    timing << " " << phase << " " << seconds;
+  if (!r.message.empty()) r.message += "; ";
+  r.message += timing.str();
+  if (options_.print_timing) {
+    if (processes_ == 1)
+      timer_.print_summary();
+    else
+      timer_.print_wall_time_statistics(comm_);
+  }
   return r;
+}
+
+}  // namespace
+
+Result solve_reference(const Scene& scene, const ReferenceOptions& options) {
+  ReferenceSolver solver(scene, options);
+  return solver.run();
 }
 
 }  // namespace fibrecheck

@@ -1,23 +1,45 @@
 #pragma once
 
+#include <functional>
+#include <string>
+
 #include "result.h"
 #include "scene.h"
 
 namespace fibrecheck {
 
-/// The implicit reference (DESIGN §3): the fibres as finite-element beams (BeamModel) and every
-/// contact solved at once, exactly, as the complementarity problem P ≥ 0, d = d0 − W·P ≤ 0,
-/// P·d = 0 — W built from finite-element solves under unit contact force pairs, the problem solved
-/// by an active-set method (no penalty parameter in the answer). An outer loop re-detects the
-/// contact geometry on the deformed fibres, with the same rule as the iterative solver (a pushing
-/// contact keeps its place and normal), re-meshes, and stops when the active set and the places no
-/// longer change. Line contacts use the same slices as the iterative solver. Friction is not
-/// modelled (the result says so in `stages`).
-struct ReferenceOptions {
-  int max_outer_iterations = 30;
-  int max_active_set_iterations = 100000;
+/// How line contacts (slices between nearly parallel fibres, fibre–wall stations) are enforced.
+enum class LineContact {
+  slices,     ///< at the same n slice midpoints as the iterative solver
+  continuous  ///< at the two Gauss points of n·2^K cells: the line contact itself as K grows
 };
 
+struct ReferenceOptions {
+  LineContact line_contact = LineContact::slices;
+  /// Refinements: elements (and in continuous mode the Gauss cells) are 2^refine times smaller.
+  int refine = 0;
+  int max_outer_iterations = 30;
+  int max_active_set_iterations = 100000;
+  /// The beams' solution as a ParaView .vtu file (with several processes, one .vtu per process
+  /// and a .pvtu that collects them); empty: none.
+  std::string vtu;
+  /// Receives a line after every outer iteration (progress); may be empty.
+  std::function<void(const std::string&)> progress;
+  /// Prints the wall time of each phase at the end (deal.II's TimerOutput), on the first process.
+  bool print_timing = false;
+};
+
+/// The implicit reference (DESIGN §3): the fibres as finite-element beams (BeamModel) and every
+/// contact solved at once, exactly, as the complementarity problem P ≥ 0, d = d0 − W·P ≤ 0,
+/// P·d = 0 — d0 and W from finite-element solutions, the problem solved by an active-set method
+/// (no penalty parameter in the answer). An outer loop re-detects the contact candidates on the
+/// deformed fibres (with the same detection as the iterative solver), re-meshes, and stops when
+/// the candidates and the active set no longer change. Friction is not modelled (the result says
+/// so in `stages`).
+///
+/// Runs on every process of MPI_COMM_WORLD (MPI must be initialised): the fibres are shared out
+/// among the processes, each meshes and solves its own, and every process ends with the same
+/// result.
 Result solve_reference(const Scene& scene, const ReferenceOptions& options = {});
 
 }  // namespace fibrecheck

@@ -40,6 +40,11 @@ json result_to_json(const Result& r) {
   j["c"] = r.c;
   j["c_stable_limit"] = r.c_stable_limit;
   j["axial_load_dropped"] = r.axial_load_dropped;
+  if (r.solver == "fem") {
+    j["complementarity_residual"] = r.complementarity_residual;
+    j["active_set_iterations"] = r.active_set_iterations;
+    j["unknowns"] = r.unknowns;
+  }
   j["stages"] = r.stages;
   j["warnings"] = r.warnings;
   j["fibres"] = json::array();
@@ -89,6 +94,9 @@ Result result_from_json(const json& j, const std::string& source) {
     r.c = j.value("c", 0.0);
     r.c_stable_limit = j.value("c_stable_limit", 0.0);
     r.axial_load_dropped = j.value("axial_load_dropped", 0.0);
+    r.complementarity_residual = j.value("complementarity_residual", 0.0);
+    r.active_set_iterations = j.value("active_set_iterations", 0L);
+    r.unknowns = j.value("unknowns", 0L);
     r.stages = j.at("stages").get<std::vector<std::string>>();
     r.warnings = j.value("warnings", std::vector<std::string>{});
     for (const json& f : j.at("fibres")) {

@@ -59,6 +59,11 @@ struct Result {
   double c = 0.0;                    ///< N/mm, step used (per point contact)
   double c_stable_limit = 0.0;       ///< N/mm, estimate of 2/λmax(W)
   double axial_load_dropped = 0.0;   ///< N, sum of |axial parts| dropped by the beam model
+  /// The reference (solver "fem") only: its complementarity problem's largest |P·d| (N·mm), its
+  /// active-set steps summed over the outer iterations, and its finite-element unknowns.
+  double complementarity_residual = 0.0;
+  long active_set_iterations = 0;
+  long unknowns = 0;
   std::vector<std::string> stages;
   std::vector<std::string> warnings;
   std::vector<FibreResult> fibres;

@@ -27,8 +27,9 @@ ContactDetector::ContactDetector(const std::vector<Fibre>& fibres, const Scene& 
     : fibres_(fibres),
       walls_(scene.walls),
       axis_(scene.contact.axis.normalized()),
-      slices_(scene.contact.slices),
       margin_(margin) {
+  const int n = scene.contact.slices;
+  for (int i = 0; i < n; ++i) station_.push_back((i + 0.5) / n), weight_.push_back(1.0 / n);
   std::tie(g1_, g2_) = cross_section_axes(axis_);
   const int m = std::max(scene.contact.slices, 20);
   grid_.resize(m + 1);
@@ -48,6 +49,17 @@ ContactDetector::ContactDetector(const std::vector<Fibre>& fibres, const Scene& 
   slicing_ = tow_fibres_.size() >= 2;
   point_pairs_possible_ = fibres_.size() >= 2 && others >= 1;
   if (!slicing_) x0_ = 0, x1_ = 1;
+}
+
+void ContactDetector::use_gauss_stations(int cells) {
+  station_.clear();
+  weight_.clear();
+  const double offset = 0.5 / std::sqrt(3.0);  // Gauss points ±1/√3 on a cell of length 1
+  for (int i = 0; i < cells; ++i)
+    for (double g : {-offset, offset}) {
+      station_.push_back((i + 0.5 + g) / cells);
+      weight_.push_back(0.5 / cells);
+    }
 }
 
 Eigen::Vector3d ContactDetector::interpolate(
@@ -107,7 +119,7 @@ void ContactDetector::detect_lines(const std::vector<std::vector<Eigen::Vector3d
   std::vector<double> radii, params;
   std::vector<int> owner;
   std::vector<std::pair<int, int>> pairs;
-  for (int i = 0; i < slices_; ++i) {
+  for (int i = 0; i < slice_count(); ++i) {
     const double x = slice_position(i);
     centres.clear();
     radii.clear();
@@ -137,7 +149,7 @@ void ContactDetector::detect_lines(const std::vector<std::vector<Eigen::Vector3d
       c.slice = i;
       c.s_a = params[first];
       c.s_b = params[second];
-      c.step_scale = 1.0 / slices_;  // Eq. 4.28: a slice carries 1/n of the line's force
+      c.step_scale = weight_[i];  // Eq. 4.28: a slice carries 1/n of the line's force
       out.push_back(c);
     }
   }
@@ -206,8 +218,8 @@ void ContactDetector::detect_points(const std::vector<std::vector<Eigen::Vector3
 void ContactDetector::detect_walls(const std::vector<std::vector<Eigen::Vector3d>>& grid_u,
                                    std::vector<Contact>& out) const {
   for (std::size_t f = 0; f < fibres_.size(); ++f) {
-    for (int j = 0; j < slices_; ++j) {
-      const double s = (j + 0.5) / slices_;
+    for (int j = 0; j < slice_count(); ++j) {
+      const double s = station_[j];
       const Eigen::Vector3d centre = fibres_[f].point(s) + interpolate(grid_u, f, s);
       for (std::size_t w = 0; w < walls_.size(); ++w) {
         const double overlap = fibres_[f].radius - walls_[w].normal.dot(centre - walls_[w].point);
@@ -220,7 +232,7 @@ void ContactDetector::detect_walls(const std::vector<std::vector<Eigen::Vector3d
         c.s_a = s;
         c.normal = walls_[w].normal;
         c.overlap = overlap;
-        c.step_scale = 1.0 / slices_;
+        c.step_scale = weight_[j];
         out.push_back(c);
       }
     }

@@ -56,8 +56,15 @@ class ContactDetector {
   bool broad_phase() const { return fibres_.size() > 2; }
   bool walls() const { return !walls_.empty(); }
 
-  /// Axial position (along the tow axis) of slice i.
-  double slice_position(int i) const { return x0_ + (i + 0.5) * (x1_ - x0_) / slices_; }
+  /// Puts the line-contact stations (slices, and wall stations along each fibre) at the two Gauss
+  /// points of each of `cells` equal cells, weighted by half a cell, instead of the n slice
+  /// midpoints (the one-point Gauss rule on n cells): the continuous line contact, converging as
+  /// the cells are refined. Call before `detect`.
+  void use_gauss_stations(int cells);
+
+  /// Number of slices and the axial position (along the tow axis) of slice i.
+  int slice_count() const { return static_cast<int>(station_.size()); }
+  double slice_position(int i) const { return x0_ + station_[i] * (x1_ - x0_); }
   /// Where a contact is, for messages: "fibres A and B at 0.5 of A".
   std::string describe(const Contact& contact) const;
   const std::vector<WallSpec>& wall_specs() const { return walls_; }
@@ -80,7 +87,9 @@ class ContactDetector {
   std::vector<WallSpec> walls_;
   Eigen::Vector3d axis_;
   Eigen::Vector3d g1_, g2_;  ///< cross-section axes of the slices
-  int slices_;
+  /// Line-contact stations as fractions of the tow's extent (slices) or of a fibre's length
+  /// (walls), and the share of the line each carries (Eq. 4.28: 1/n for n slices).
+  std::vector<double> station_, weight_;
   double margin_;
   double x0_ = 0, x1_ = 1;  ///< axial extent of the tow fibres
   std::vector<double> grid_;
