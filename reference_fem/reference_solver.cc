@@ -161,7 +161,7 @@ class ReferenceSolver {
 
   const Scene& scene_;
   ReferenceOptions options_;
-  MPI_Comm comm_ = MPI_COMM_WORLD;
+  MPI_Comm comm_;
   unsigned int rank_ = 0, processes_ = 1;
   dealii::ConditionalOStream pcout_;
   dealii::TimerOutput timer_;
@@ -191,10 +191,11 @@ class ReferenceSolver {
 ReferenceSolver::ReferenceSolver(const Scene& scene, const ReferenceOptions& options)
     : scene_(scene),
       options_(options),
-      rank_(dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD)),
-      processes_(dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD)),
+      comm_(options.communicator),
+      rank_(dealii::Utilities::MPI::this_mpi_process(comm_)),
+      processes_(dealii::Utilities::MPI::n_mpi_processes(comm_)),
       pcout_(std::cout, options.print_timing && rank_ == 0),
-      timer_(MPI_COMM_WORLD, pcout_, dealii::TimerOutput::never,
+      timer_(comm_, pcout_, dealii::TimerOutput::never,
              dealii::TimerOutput::wall_times),
       fibres_([&] {
         std::vector<Fibre> f;

@@ -1,5 +1,7 @@
 #pragma once
 
+#include <mpi.h>
+
 #include <functional>
 #include <string>
 
@@ -25,6 +27,8 @@ struct ReferenceOptions {
   std::string vtu;
   /// Receives a line after every outer iteration (progress); may be empty.
   std::function<void(const std::string&)> progress;
+  /// The processes that share the fibres (every one ends with the same result).
+  MPI_Comm communicator = MPI_COMM_WORLD;
   /// Prints the wall time of each phase at the end (deal.II's TimerOutput), on the first process.
   bool print_timing = false;
 };
@@ -37,9 +41,9 @@ struct ReferenceOptions {
 /// the candidates and the active set no longer change. Friction is not modelled (the result says
 /// so in `stages`).
 ///
-/// Runs on every process of MPI_COMM_WORLD (MPI must be initialised): the fibres are shared out
-/// among the processes, each meshes and solves its own, and every process ends with the same
-/// result.
+/// Runs on every process of `options.communicator` (MPI must be initialised): the fibres are
+/// shared out among the processes, each meshes and solves its own, and every process ends with the
+/// same result.
 Result solve_reference(const Scene& scene, const ReferenceOptions& options = {});
 
 }  // namespace fibrecheck

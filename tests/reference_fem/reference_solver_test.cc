@@ -6,6 +6,11 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <tuple>
 
 #include "iterative_solver.h"
 #include "test_scenes.h"
@@ -103,6 +108,153 @@ TEST(ReferenceSolver, ParallelFibresOnSlicesAgreeWithTheIterativeSolver) {
   EXPECT_LT(difference, 1e-6 * largest);
   const double EIa = bending_stiffness(0.01, 80000), EIb = bending_stiffness(0.008, 70000);
   EXPECT_NEAR(force_between(fem, "A", "B"), q * EIb / (EIa + EIb), 0.02 * q * EIb / (EIa + EIb));
+}
+
+/// Largest difference of the contact forces (relative to the largest force) and of the sampled
+/// displacements (relative to the largest displacement) between two results of one scene.
+struct Difference {
+  double force = 0.0, displacement = 0.0;
+};
+
+Difference compare(const Result& x, const Result& y) {
+  std::map<std::tuple<std::string, std::string, long long>, Eigen::Vector3d> forces;
+  double largest_force = 0.0, largest_displacement = 0.0;
+  for (const Result* r : {&x, &y})
+    for (const ContactResult& c : r->contacts)
+      for (const ContactPoint& p : c.points) {
+        const auto key = std::make_tuple(c.fibres[0], c.fibres[1], std::llround(p.position * 1e9));
+        auto it = forces.try_emplace(key, Eigen::Vector3d::Zero()).first;
+        it->second += (r == &x ? 1.0 : -1.0) * p.force;
+        largest_force = std::max(largest_force, p.force.norm());
+      }
+  Difference d;
+  for (const auto& [key, f] : forces) d.force = std::max(d.force, f.norm());
+  for (std::size_t f = 0; f < x.fibres.size(); ++f)
+    for (std::size_t j = 0; j < x.fibres[f].displacement.size(); ++j) {
+      largest_displacement = std::max(largest_displacement, x.fibres[f].displacement[j].norm());
+      d.displacement = std::max(
+          d.displacement, (x.fibres[f].displacement[j] - y.fibres[f].displacement[j]).norm());
+    }
+  d.force /= largest_force;
+  d.displacement /= largest_displacement;
+  return d;
+}
+
+// The same slices, contact by contact: the reference equals the iterative solver converged far
+// below its usual tolerance (1e-13 mm), on the committed crossing and tow scenes. Contacts take
+// place and normal from the undeformed fibres in both, so there is one answer to agree on.
+TEST(ReferenceSolver, CommittedScenesOnSlicesAgreeWithTheConvergedIterativeSolver) {
+  for (const char* name : {"two_fibres_crossing", "small_tow_19"}) {
+    Scene s = read_scene(std::string(FIBRECHECK_SCENES_DIR) + "/" + name + ".json");
+    s.solver.overlap_tolerance = 1e-13;
+    s.solver.rule = UpdateRule::accelerated;
+    const Result it = solve_iteratively(s, SolverOptions::from_scene(s));
+    ASSERT_EQ(it.status, "converged") << name << ": " << it.message;
+    const Result fem = solve_reference(s);
+    ASSERT_EQ(fem.status, "converged") << name << ": " << fem.message;
+    const Difference d = compare(fem, it);
+    EXPECT_LT(d.force, 1e-6) << name;
+    EXPECT_LT(d.displacement, 1e-6) << name;
+    EXPECT_NEAR(fem.strain_energy, it.strain_energy, 1e-6 * it.strain_energy) << name;
+    // The complementarity conditions hold to round-off.
+    EXPECT_LT(fem.max_overlap, 1e-10) << name;
+    EXPECT_LT(fem.gap_force_residual, 1e-10) << name;
+    EXPECT_GT(fem.active_set_iterations, 0) << name;
+  }
+}
+
+// Continuous line contact: parallel fibres pressed together along their whole length share the
+// load by stiffness, p = q·EI_B/(EI_A + EI_B) (DESIGN §7). Enforced at the Gauss points of n·2^K
+// cells, the line force converges at first order (the share of the line next to the pinned ends,
+// where a force moves nothing, is what the points resolve) and the deflection much faster.
+TEST(ReferenceSolver, ContinuousLineContactConvergesUnderRefinement) {
+  const double q = 1e-4;
+  const double EIa = bending_stiffness(0.01, 80000), EIb = bending_stiffness(0.008, 70000);
+  const double p = q * EIb / (EIa + EIb), w = 5.0 * p / (384.0 * EIb);
+  ReferenceOptions options;
+  options.line_contact = LineContact::continuous;
+  std::vector<double> force_error, deflection_error;
+  for (int K = 0; K <= 2; ++K) {
+    options.refine = K;
+    const Result r = solve_reference(testing::parallel(q, 10), options);
+    ASSERT_EQ(r.status, "converged") << r.message;
+    force_error.push_back(std::fabs(force_between(r, "A", "B") - p) / p);
+    const auto& u = r.fibres[1].displacement;
+    deflection_error.push_back(std::fabs(std::fabs(u[u.size() / 2].z()) - w) / w);
+  }
+  for (int K = 1; K <= 2; ++K) {
+    const double order = std::log2(force_error[K - 1] / force_error[K]);
+    EXPECT_NEAR(order, 1.0, 0.05) << "K = " << K;
+    EXPECT_LT(deflection_error[K], deflection_error[K - 1]);
+  }
+  EXPECT_LT(deflection_error[1], 1e-6);
+  // The default mesh (one cell per slice of the scene, here 100) is within 1e-3.
+  options.refine = 0;
+  const Result r = solve_reference(testing::parallel(q, 100), options);
+  ASSERT_EQ(r.status, "converged") << r.message;
+  EXPECT_LT(std::fabs(force_between(r, "A", "B") - p), 1e-3 * p);
+}
+
+// A fibre pressed onto a wall by a point load at mid-span: R = P − g/C(L/2).
+TEST(ReferenceSolver, FibrePressedOntoAWall) {
+  Scene s;
+  s.fibres.push_back(testing::fibre("F", {0, 0, 0}, {1, 0, 0}));
+  const double EI = bending_stiffness(0.01, 80000), C = compliance(0.5, 1.0, EI);
+  const double P = 1e-4, gap = 0.5 * P * C;
+  WallSpec wall;
+  wall.id = "floor";
+  wall.point = {0, 0, -0.01 - gap};
+  wall.normal = {0, 0, 1};
+  s.walls.push_back(wall);
+  LoadSpec load;
+  load.fibre = "F";
+  load.force = {0, 0, -P};
+  s.loads.push_back(load);
+  s.contact.slices = 51;  // a station exactly at mid-span
+  const Result r = solve_reference(s);
+  ASSERT_EQ(r.status, "converged") << r.message;
+  ASSERT_EQ(r.walls.size(), 1u);
+  EXPECT_NEAR(r.walls[0].force, P - gap / C, 1e-8 * P);
+}
+
+// An overlap at two pinned supports cannot be resolved: said at once, with no crash on the
+// singular system and nothing non-finite in the result.
+TEST(ReferenceSolver, OverlapAtTwoPinnedSupportsIsUnresolvable) {
+  Scene s;
+  s.fibres.push_back(testing::fibre("A", {0, 0, 0}, {1, 0, 0}));
+  s.fibres.push_back(testing::fibre("B", {0, 0, 0.015}, {0, 1, 0.015}));
+  const Result r = solve_reference(s);
+  EXPECT_EQ(r.status, "unresolvable");
+  EXPECT_NE(r.message.find("A and B"), std::string::npos) << r.message;
+  EXPECT_TRUE(std::isfinite(r.strain_energy) && std::isfinite(r.max_overlap));
+  for (const FibreResult& f : r.fibres)
+    for (const Eigen::Vector3d& u : f.displacement) EXPECT_TRUE(u.allFinite());
+}
+
+// Friction is not modelled by the reference: the scene runs frictionless and the result says so.
+TEST(ReferenceSolver, FrictionIsReportedAsNotModelled) {
+  Scene s = testing::crossing(0.5, 0.5, 1e-3);
+  s.contact.friction = 0.3;
+  const Result r = solve_reference(s);
+  ASSERT_EQ(r.status, "converged");
+  EXPECT_NE(std::find(r.stages.begin(), r.stages.end(), "friction_not_modelled"), r.stages.end());
+  const Scene frictionless = testing::crossing(0.5, 0.5, 1e-3);
+  EXPECT_NEAR(force_between(r, "A", "B"), force_between(solve_reference(frictionless), "A", "B"),
+              1e-15);
+}
+
+// The beams for ParaView: a .vtu file with the deflections, moments and displacement vectors.
+TEST(ReferenceSolver, WritesTheBeamsForParaView) {
+  ReferenceOptions options;
+  options.vtu = (std::filesystem::temp_directory_path() / "fibrecheck_reference_test.vtu").string();
+  const Result r = solve_reference(testing::crossing(0.3, 0.7, 1e-3), options);
+  ASSERT_EQ(r.status, "converged");
+  std::ifstream in(options.vtu);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  for (const char* field : {"<VTKFile", "UnstructuredGrid", "\"w1\"", "\"M2\"", "\"displacement\"",
+                            "\"fibre\""})
+    EXPECT_NE(text.find(field), std::string::npos) << field;
+  std::filesystem::remove(options.vtu);
 }
 
 }  // namespace

@@ -1,0 +1,67 @@
+// The reference shared out over two MPI processes gives the answer of one process: run by ctest
+// under `mpiexec -np 2`.
+#include <deal.II/base/mpi.h>
+#include <gtest/gtest.h>
+
+#include <vector>
+
+#include "reference_solver.h"
+
+namespace fibrecheck {
+namespace {
+
+std::vector<double> forces_and_displacements(const Result& r) {
+  std::vector<double> values;
+  for (const ContactResult& c : r.contacts)
+    for (const ContactPoint& p : c.points) values.insert(values.end(), p.force.data(), p.force.data() + 3);
+  for (const FibreResult& f : r.fibres)
+    for (const Eigen::Vector3d& u : f.displacement) values.insert(values.end(), u.data(), u.data() + 3);
+  return values;
+}
+
+TEST(ReferenceMpi, TwoProcessesGiveTheAnswerOfOne) {
+  ASSERT_EQ(dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD), 2u)
+      << "run this test with mpiexec -np 2";
+  const Scene scene = read_scene(std::string(FIBRECHECK_SCENES_DIR) + "/small_tow_19.json");
+  ReferenceOptions alone;
+  alone.communicator = MPI_COMM_SELF;
+  const Result one = solve_reference(scene, alone);
+  const Result two = solve_reference(scene);  // MPI_COMM_WORLD: the fibres shared out
+  ASSERT_EQ(one.status, "converged") << one.message;
+  ASSERT_EQ(two.status, "converged") << two.message;
+  EXPECT_EQ(one.unknowns, two.unknowns);
+  ASSERT_EQ(one.contacts.size(), two.contacts.size());
+  const std::vector<double> x = forces_and_displacements(one), y = forces_and_displacements(two);
+  ASSERT_EQ(x.size(), y.size());
+  // Forces (~1e-4 N) and displacements (~1e-3 mm) to round-off of the two factorisations.
+  double force_scale = 0.0;
+  for (const ContactResult& c : one.contacts)
+    for (const ContactPoint& p : c.points) force_scale = std::max(force_scale, p.force.norm());
+  const std::size_t forces = 3 * [&] {
+    std::size_t n = 0;
+    for (const ContactResult& c : one.contacts) n += c.points.size();
+    return n;
+  }();
+  double largest_u = 0.0;
+  for (std::size_t i = forces; i < x.size(); ++i) largest_u = std::max(largest_u, std::fabs(x[i]));
+  for (std::size_t i = 0; i < x.size(); ++i)
+    EXPECT_NEAR(x[i], y[i], 1e-9 * (i < forces ? force_scale : largest_u)) << i;
+  // And both processes hold the same result.
+  std::vector<double> first = y;
+  MPI_Bcast(first.data(), static_cast<int>(first.size()), MPI_DOUBLE, 0, MPI_COMM_WORLD);
+  for (std::size_t i = 0; i < y.size(); ++i) EXPECT_EQ(first[i], y[i]) << i;
+  EXPECT_NE(std::find(two.stages.begin(), two.stages.end(), "mpi_2_processes"), two.stages.end());
+}
+
+}  // namespace
+}  // namespace fibrecheck
+
+int main(int argc, char** argv) {
+  dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  ::testing::InitGoogleTest(&argc, argv);
+  // Only the first process reports, so ctest's log is read once.
+  if (dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) != 0)
+    delete ::testing::UnitTest::GetInstance()->listeners().Release(
+        ::testing::UnitTest::GetInstance()->listeners().default_result_printer());
+  return RUN_ALL_TESTS();
+}
