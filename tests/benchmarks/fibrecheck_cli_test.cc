@@ -52,6 +52,10 @@ class Cli : public ::testing::Test {
     std::ofstream(dir_ + name) << doc.dump();
     return dir_ + name;
   }
+  std::string write_text(const std::string& name, const std::string& text) {
+    std::ofstream(dir_ + name) << text;
+    return dir_ + name;
+  }
   json crossing() { return json::parse(slurp(scene("two_fibres_crossing"))); }
   std::string dir_;
 };
@@ -189,6 +193,40 @@ TEST_F(Cli, FemWritesTheSameResultSchema) {
   EXPECT_EQ(bad.code, 2);
   EXPECT_NE(bad.err.find("fibres[1].radius"), std::string::npos) << bad.err;
   EXPECT_FALSE(fs::exists(dir_ + "bad.json.out"));
+}
+
+// Each kind of bad input: one message naming what is wrong, exit code 2, nothing written.
+TEST_F(Cli, FemRejectsBadInputWithoutWritingAnything) {
+  const std::string out = " --out " + dir_ + "never.json";
+  struct Case {
+    std::string arguments, says;
+  };
+  for (const Case& k : {Case{"fem " + dir_ + "missing.json" + out, "no such file"},
+                        Case{"fem " + write_text("broken.json", "{\"fibres\": [") + out, "broken.json"},
+                        Case{"fem " + scene("two_fibres_crossing") + " --line-contact sideways" + out,
+                             "--line-contact"},
+                        Case{"fem " + scene("two_fibres_crossing") + " --refine -1" + out, "--refine"},
+                        Case{"fem " + scene("two_fibres_crossing") + " --vtk " + dir_ + "b.vtk" + out,
+                             "--vtk"}}) {
+    const Outcome bad = run(k.arguments);
+    EXPECT_EQ(bad.code, 2) << k.arguments;
+    EXPECT_NE(bad.err.find(k.says), std::string::npos) << k.arguments << "\n" << bad.err;
+    EXPECT_FALSE(fs::exists(dir_ + "never.json")) << k.arguments;
+  }
+}
+
+// Continuous line contact with a refinement, and the beams for ParaView through DataOut.
+TEST_F(Cli, FemContinuousLineContactAndParaViewBeams) {
+  const Outcome ok = run("fem " + scene("parallel_fibres") +
+                         " -q --slices 20 --line-contact continuous --refine 1 --out " + dir_ +
+                         "c.json --vtk " + dir_ + "beams/c.vtu");
+  EXPECT_EQ(ok.code, 0) << ok.err;
+  const json r = json::parse(slurp(dir_ + "c.json"));
+  const auto& stages = r["stages"];
+  EXPECT_NE(std::find(stages.begin(), stages.end(), "continuous_line_contact"), stages.end());
+  // 20 cells refined once, two Gauss points each.
+  EXPECT_EQ(r["contacts"][0]["points"].size(), 80u);
+  EXPECT_NE(slurp(dir_ + "beams/c.vtu").find("\"displacement\""), std::string::npos);
 }
 #endif
 
