@@ -17,7 +17,7 @@ namespace fibrecheck {
 
 void add_fem_command(CLI::App& app, int& exit_code) {
   struct Arguments {
-    std::string scene, out, vtk, line_contact = "slices";
+    std::string scene, out, vtk, line_contact = "slices", beam_solver = "direct";
     int slices = 0, refine = 0;
     bool quiet = false;
   };
@@ -32,6 +32,10 @@ void add_fem_command(CLI::App& app, int& exit_code) {
                   "Line contacts at the n slices (as the iterative solver) or continuous (Gauss "
                   "points of n*2^K cells)")
       ->check(CLI::IsMember({"slices", "continuous"}));
+  fem->add_option("--beam-solver", args->beam_solver,
+                  "Beams' linear solver: direct (MUMPS) or cg_amg (CG with hypre BoomerAMG, for "
+                  "large tows)")
+      ->check(CLI::IsMember({"direct", "cg_amg"}));
   fem->add_option("--refine", args->refine,
                   "Refinements K: elements (and continuous-mode cells) 2^K times smaller")
       ->check(CLI::Range(0, 12));
@@ -75,6 +79,7 @@ void add_fem_command(CLI::App& app, int& exit_code) {
     options.line_contact =
         args->line_contact == "continuous" ? LineContact::continuous : LineContact::slices;
     options.refine = args->refine;
+    options.beam_solver = args->beam_solver == "cg_amg" ? BeamSolver::cg_amg : BeamSolver::direct;
     if (vtu) options.vtu = args->vtk;
     options.print_timing = !args->quiet;
     if (!args->quiet && first)

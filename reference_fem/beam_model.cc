@@ -10,6 +10,7 @@
 #include <deal.II/grid/tria.h>
 #include <deal.II/lac/affine_constraints.h>
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
+#include <deal.II/lac/petsc_precondition.h>
 #include <deal.II/lac/petsc_solver.h>
 #include <deal.II/lac/petsc_sparse_matrix.h>
 #include <deal.II/lac/petsc_vector.h>
@@ -95,14 +96,31 @@ struct BeamModel::Implementation {
   /// MUMPS factorisation of the system matrix, made once and reused for every load case.
   KSP direct_solver = nullptr;
 
+  /// For conjugate gradients: the mixed system is symmetric but indefinite, so it is solved as
+  /// its two symmetric positive definite halves, per plane: K·m = b for the moment (from
+  /// −∫M'ψ' = −∫qψ − ΣPψ(a)), then K·w = A·m for the deflection (from ∫Mφ/EI = ∫w'φ'), with K the
+  /// Laplace matrix ∫ψ'φ' and A the mass matrix ∫ψφ/EI on the scalar quadratic element, both with
+  /// the supports' zero values; K by CG with hypre's BoomerAMG, set up once.
+  BeamSolver solver_kind = BeamSolver::direct;
+  FE_Q<1, 3> scalar_fe{2};
+  DoFHandler<1, 3> scalar_dofs{triangulation};
+  AffineConstraints<double> scalar_constraints;
+  PETScWrappers::SparseMatrix laplace, mass;
+  std::unique_ptr<PETScWrappers::PreconditionBoomerAMG> amg;
+  PETScWrappers::MPI::Vector plane_rhs[2], moment[2], deflection[2], mass_times_moment;
+  /// Per fibre: node fraction s → the scalar DoF of that vertex.
+  std::vector<std::map<double, types::global_dof_index>> scalar_nodes;
+  long cg_iterations = 0;
+
   ~Implementation() {
     if (direct_solver) KSPDestroy(&direct_solver);
   }
   /// Per fibre: node fraction s → the four DoFs (w1, M1, w2, M2) of that vertex.
   std::vector<std::map<double, std::array<types::global_dof_index, 4>>> nodes;
 
-  Implementation(const Scene& s, const std::string& mesh_file, const std::vector<char>& meshed)
-      : scene(s) {
+  Implementation(const Scene& s, const std::string& mesh_file, const std::vector<char>& meshed,
+                 BeamSolver kind)
+      : scene(s), solver_kind(kind) {
     for (const FibreSpec& spec : scene.fibres)
       fibres.push_back(make_fibre(spec, scene.contact.axis, scene.contact.parallel_angle_deg));
     const auto tags = curve_tags(mesh_file);
@@ -145,11 +163,153 @@ struct BeamModel::Implementation {
       }
     }
     constraints.close();
+    solution.reinit(MPI_COMM_SELF, dof_handler.n_dofs(), dof_handler.n_dofs());
+    if (solver_kind == BeamSolver::cg_amg) {
+      setup_split_system();
+      return;
+    }
     DynamicSparsityPattern pattern(dof_handler.n_dofs());
     DoFTools::make_sparsity_pattern(dof_handler, pattern, constraints, false);
     system_matrix.reinit(pattern);
-    solution.reinit(MPI_COMM_SELF, dof_handler.n_dofs(), dof_handler.n_dofs());
     system_rhs.reinit(MPI_COMM_SELF, dof_handler.n_dofs(), dof_handler.n_dofs());
+  }
+
+  void setup_split_system() {
+    scalar_dofs.distribute_dofs(scalar_fe);
+    scalar_nodes.assign(fibres.size(), {});
+    scalar_constraints.clear();
+    for (const auto& cell : scalar_dofs.active_cell_iterators()) {
+      const Fibre& fibre = fibres[fibre_of_material.at(cell->material_id())];
+      for (unsigned int v = 0; v < 2; ++v) {
+        const Point<3> p = cell->vertex(v);
+        const double s = (Eigen::Vector3d(p[0], p[1], p[2]) - fibre.start).dot(fibre.t) / fibre.length;
+        const types::global_dof_index dof = cell->vertex_dof_index(v, 0);
+        scalar_nodes[fibre_of_material.at(cell->material_id())][s] = dof;
+        if (std::fabs(s) < 1e-9 || std::fabs(s - 1.0) < 1e-9) scalar_constraints.add_line(dof);
+      }
+    }
+    scalar_constraints.close();
+    DynamicSparsityPattern pattern(scalar_dofs.n_dofs());
+    DoFTools::make_sparsity_pattern(scalar_dofs, pattern, scalar_constraints, false);
+    laplace.reinit(pattern);
+    mass.reinit(pattern);
+    const auto n = scalar_dofs.n_dofs();
+    for (int plane = 0; plane < 2; ++plane) {
+      plane_rhs[plane].reinit(MPI_COMM_SELF, n, n);
+      moment[plane].reinit(MPI_COMM_SELF, n, n);
+      deflection[plane].reinit(MPI_COMM_SELF, n, n);
+    }
+    mass_times_moment.reinit(MPI_COMM_SELF, n, n);
+    const QGauss<1> quadrature(3);
+    FEValues<1, 3> values(scalar_fe, quadrature,
+                          update_values | update_gradients | update_JxW_values);
+    const unsigned int m = scalar_fe.n_dofs_per_cell();
+    FullMatrix<double> cell_laplace(m, m), cell_mass(m, m);
+    std::vector<types::global_dof_index> dofs(m);
+    for (const auto& cell : scalar_dofs.active_cell_iterators()) {
+      const double EI = fibres[fibre_of_material.at(cell->material_id())].EI;
+      values.reinit(cell);
+      cell_laplace = 0;
+      cell_mass = 0;
+      for (unsigned int k = 0; k < quadrature.size(); ++k)
+        for (unsigned int i = 0; i < m; ++i)
+          for (unsigned int j = 0; j < m; ++j) {
+            cell_laplace(i, j) += values.shape_grad(i, k) * values.shape_grad(j, k) * values.JxW(k);
+            cell_mass(i, j) +=
+                values.shape_value(i, k) * values.shape_value(j, k) / EI * values.JxW(k);
+          }
+      cell->get_dof_indices(dofs);
+      scalar_constraints.distribute_local_to_global(cell_laplace, dofs, laplace);
+      scalar_constraints.distribute_local_to_global(cell_mass, dofs, mass);
+    }
+    laplace.compress(VectorOperation::add);
+    mass.compress(VectorOperation::add);
+    PETScWrappers::PreconditionBoomerAMG::AdditionalData data;
+    data.symmetric_operator = true;
+    amg = std::make_unique<PETScWrappers::PreconditionBoomerAMG>(laplace, data);
+  }
+
+  /// Both planes by the split system (see `solver_kind`), then the mixed solution vector filled
+  /// from the scalar ones, so every later use sees one kind of solution.
+  void solve_split(const std::vector<NodalForce>& extra, bool scene_loads) {
+    const QGauss<1> quadrature(3);
+    FEValues<1, 3> values(scalar_fe, quadrature, update_values | update_JxW_values);
+    const unsigned int m = scalar_fe.n_dofs_per_cell();
+    std::vector<types::global_dof_index> dofs(m);
+    std::vector<Eigen::Vector2d> q(fibres.size(), Eigen::Vector2d::Zero());
+    bool distributed = false;
+    for (const LoadSpec& load : scene.loads)
+      if (scene_loads && load.kind == LoadKind::distributed) {
+        const int f = scene.fibre_index(load.fibre);
+        q[f] += Eigen::Vector2d(load.force.dot(fibres[f].e1), load.force.dot(fibres[f].e2));
+        distributed = true;
+      }
+    for (int plane = 0; plane < 2; ++plane) plane_rhs[plane] = 0;
+    for (const auto& cell : scalar_dofs.active_cell_iterators()) {
+      if (!distributed) break;
+      const int f = fibre_of_material.at(cell->material_id());
+      if (q[f].isZero()) continue;
+      values.reinit(cell);
+      cell->get_dof_indices(dofs);
+      for (unsigned int k = 0; k < quadrature.size(); ++k)
+        for (unsigned int i = 0; i < m; ++i)
+          for (int plane = 0; plane < 2; ++plane)
+            plane_rhs[plane](dofs[i]) += q[f][plane] * values.shape_value(i, k) * values.JxW(k);
+    }
+    auto add_point_force = [&](int f, double s, const Eigen::Vector3d& force) {
+      const types::global_dof_index dof = node(scalar_nodes, f, s);
+      if (scalar_constraints.is_constrained(dof)) return;
+      plane_rhs[0](dof) += force.dot(fibres[f].e1);
+      plane_rhs[1](dof) += force.dot(fibres[f].e2);
+    };
+    for (const LoadSpec& load : scene.loads)
+      if (scene_loads && load.kind == LoadKind::point)
+        add_point_force(scene.fibre_index(load.fibre), load.position, load.force);
+    for (const NodalForce& force : extra) add_point_force(force.fibre, force.s, force.force);
+    auto cg = [&](PETScWrappers::MPI::Vector& x, PETScWrappers::MPI::Vector& b) {
+      scalar_constraints.set_zero(b);
+      b.compress(VectorOperation::insert);
+      x = 0;
+      const double norm = b.l2_norm();
+      if (norm == 0.0) return;
+      SolverControl control(10000, 1e-14 * norm);
+      PETScWrappers::SolverCG solver(control, MPI_COMM_SELF);
+      solver.solve(laplace, x, b, *amg);
+      cg_iterations += control.last_step();
+      scalar_constraints.distribute(x);
+    };
+    for (int plane = 0; plane < 2; ++plane) {
+      plane_rhs[plane].compress(VectorOperation::add);
+      cg(moment[plane], plane_rhs[plane]);
+      mass.vmult(mass_times_moment, moment[plane]);
+      cg(deflection[plane], mass_times_moment);
+    }
+    // The mixed solution vector from the scalar ones, cell by cell.
+    std::vector<types::global_dof_index> mixed(fe.n_dofs_per_cell());
+    auto cell = dof_handler.begin_active();
+    for (const auto& scalar_cell : scalar_dofs.active_cell_iterators()) {
+      scalar_cell->get_dof_indices(dofs);
+      cell->get_dof_indices(mixed);
+      for (unsigned int i = 0; i < mixed.size(); ++i) {
+        const auto [component, index] = fe.system_to_component_index(i);
+        const int plane = component == kW[0] || component == kM[0] ? 0 : 1;
+        const bool is_w = component == kW[plane];
+        solution(mixed[i]) = is_w ? deflection[plane](dofs[index]) : moment[plane](dofs[index]);
+      }
+      ++cell;
+    }
+    solution.compress(VectorOperation::insert);
+  }
+
+  /// The DoF of the node at fraction s of fibre f in one of the node tables.
+  template <typename Table>
+  typename Table::value_type::mapped_type node(const Table& table, int f, double s) const {
+    const auto& nodes_of_fibre = table.at(f);
+    auto it = nodes_of_fibre.lower_bound(s - 1e-9);
+    if (it == nodes_of_fibre.end() || std::fabs(it->first - s) > 1e-9)
+      throw std::runtime_error("no mesh node at s = " + std::to_string(s) + " of fibre " +
+                               fibres[f].id);
+    return it->second;
   }
 
   /// The mixed form in both planes; uniform loads integrated, point loads at their nodes.
@@ -244,15 +404,23 @@ struct BeamModel::Implementation {
 };
 
 BeamModel::BeamModel(const Scene& scene, const std::string& mesh_file,
-                     const std::vector<char>& fibres)
-    : impl_(std::make_unique<Implementation>(scene, mesh_file, fibres)) {}
+                     const std::vector<char>& fibres, BeamSolver solver)
+    : impl_(std::make_unique<Implementation>(scene, mesh_file, fibres, solver)) {}
 
 BeamModel::~BeamModel() = default;
 
 void BeamModel::run(const std::vector<NodalForce>& extra, bool scene_loads) {
   if (impl_->dof_handler.n_dofs() == 0) impl_->setup_system();
+  if (impl_->solver_kind == BeamSolver::cg_amg) {
+    impl_->solve_split(extra, scene_loads);
+    return;
+  }
   impl_->assemble_system(extra, scene_loads);
   impl_->solve();
+}
+
+long BeamModel::cg_iterations() const {
+  return impl_->cg_iterations;
 }
 
 Eigen::Vector3d BeamModel::displacement(int fibre, double s) const {

@@ -10,6 +10,12 @@
 
 namespace fibrecheck {
 
+/// Linear solver of the beams' finite-element systems.
+enum class BeamSolver {
+  direct,  ///< MUMPS LU of the mixed system, factorised once and reused (default)
+  cg_amg   ///< conjugate gradients with hypre's BoomerAMG on the system's two Laplace halves
+};
+
 /// A point force on the finite-element beams (N), at a mesh node of one fibre.
 struct NodalForce {
   int fibre;
@@ -33,7 +39,8 @@ class BeamModel {
  public:
   /// Reads the fibres' mesh (written by `write_mesh`) for the scene; `fibres` marks the fibres the
   /// mesh holds (by index in the scene; empty: all of them).
-  BeamModel(const Scene& scene, const std::string& mesh_file, const std::vector<char>& fibres = {});
+  BeamModel(const Scene& scene, const std::string& mesh_file, const std::vector<char>& fibres = {},
+            BeamSolver solver = BeamSolver::direct);
   ~BeamModel();
 
   /// Degrees of freedom, supports and the sparsity pattern (done by the first `run` otherwise).
@@ -48,6 +55,9 @@ class BeamModel {
 
   /// Number of unknowns (both planes, w and M).
   std::size_t unknowns() const;
+
+  /// Conjugate-gradient iterations so far (solver cg_amg).
+  long cg_iterations() const;
 
   /// Writes the last solution (deflections w1, w2 and moments M1, M2 in each fibre's two bending
   /// planes, the displacement vector and the fibre's index) on the mesh as a ParaView .vtu file;

@@ -301,7 +301,7 @@ void ReferenceSolver::make_grid() {
     write_mesh(scene_, mesh, mesh_file_);
   }
   dealii::TimerOutput::Scope read(timer_, "make_grid: GridIn");
-  model_ = std::make_unique<BeamModel>(scene_, mesh_file_, owned_);
+  model_ = std::make_unique<BeamModel>(scene_, mesh_file_, owned_, options_.beam_solver);
 }
 
 // setup_system: degrees of freedom, supports, the sparsity pattern.
@@ -578,6 +578,7 @@ Result ReferenceSolver::run() {
   if (detector_.slicing()) r.stages.push_back("slices");
   if (detector_.walls()) r.stages.push_back("walls");
   if (options_.line_contact == LineContact::continuous) r.stages.push_back("continuous_line_contact");
+  r.stages.push_back(options_.beam_solver == BeamSolver::direct ? "mumps" : "cg_boomeramg");
   if (scene_.contact.friction > 0.0) {
     r.stages.push_back("friction_not_modelled");
     r.warnings.push_back("the reference model is frictionless; contact.friction was ignored");
@@ -589,8 +590,10 @@ Result ReferenceSolver::run() {
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   std::ostringstream timing;
   timing.precision(3);
-  timing << "unknowns " << r.unknowns << ", active-set passes " << active_set_iterations_
-         << "; wall time per phase (s):";
+  timing << "unknowns " << r.unknowns << ", active-set passes " << active_set_iterations_;
+  if (options_.beam_solver == BeamSolver::cg_amg)
+    timing << ", CG iterations " << (model_ ? model_->cg_iterations() : 0) << " (last mesh)";
+  timing << "; wall time per phase (s):";
   for (const auto& [phase, seconds] :
        timer_.get_summary_data(dealii::TimerOutput::total_wall_time))
     timing << " " << phase << " " << seconds;

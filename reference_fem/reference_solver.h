@@ -5,6 +5,7 @@
 #include <functional>
 #include <string>
 
+#include "beam_model.h"
 #include "result.h"
 #include "scene.h"
 
@@ -20,6 +21,8 @@ struct ReferenceOptions {
   LineContact line_contact = LineContact::slices;
   /// Refinements: elements (and in continuous mode the Gauss cells) are 2^refine times smaller.
   int refine = 0;
+  /// MUMPS (exact to round-off) or CG with BoomerAMG (relative residual 1e-14), for large tows.
+  BeamSolver beam_solver = BeamSolver::direct;
   int max_outer_iterations = 30;
   int max_active_set_iterations = 100000;
   /// The beams' solution as a ParaView .vtu file (with several processes, one .vtu per process

@@ -12,7 +12,10 @@
 namespace fibrecheck {
 namespace {
 
-TEST(BeamModel, NodalDeflectionsAreExactForPointAndUniformLoads) {
+// Both linear solvers: MUMPS on the mixed system, and CG with BoomerAMG on its two Laplace halves.
+class BeamModelSolvers : public ::testing::TestWithParam<BeamSolver> {};
+
+TEST_P(BeamModelSolvers, NodalDeflectionsAreExactForPointAndUniformLoads) {
   Scene s;
   s.name = "skew_beam";
   FibreSpec f;
@@ -41,7 +44,7 @@ TEST(BeamModel, NodalDeflectionsAreExactForPointAndUniformLoads) {
   s.contact.slices = 7;  // a coarse mesh: 7 elements plus the load stations
   const std::string mesh = ::testing::TempDir() + "skew_beam.msh";
   write_mesh(s, MeshOptions{}, mesh);
-  BeamModel model(s, mesh);
+  BeamModel model(s, mesh, {}, GetParam());
   model.run();
   EXPECT_GT(model.unknowns(), 0u);
 
@@ -61,6 +64,10 @@ TEST(BeamModel, NodalDeflectionsAreExactForPointAndUniformLoads) {
     EXPECT_NEAR(u.dot(fibre.t), 0.0, 1e-15);
   }
 }
+
+INSTANTIATE_TEST_SUITE_P(Direct, BeamModelSolvers, ::testing::Values(BeamSolver::direct));
+INSTANTIATE_TEST_SUITE_P(ConjugateGradients, BeamModelSolvers,
+                         ::testing::Values(BeamSolver::cg_amg));
 
 }  // namespace
 }  // namespace fibrecheck
