@@ -249,16 +249,7 @@ void ReferenceSolver::detect() {
     superposition_.fibre_field(static_cast<int>(f), contacts_, force_on_a_, true, detector_.grid(),
                                grid[f]);
   std::vector<Contact> found = detector_.detect(grid);
-  std::map<std::uint64_t, const Contact*> previous;
-  for (const Contact& c : contacts_) previous[c.key()] = &c;
-  for (Contact& c : found) {
-    auto it = previous.find(c.key());
-    if (it == previous.end()) continue;
-    c.force = it->second->force;
-    previous.erase(it);
-  }
-  for (const auto& [key, c] : previous)
-    if (c->force > 0.0) found.push_back(*c);
+  carry_over(contacts_, found);
   contacts_ = std::move(found);
 }
 

@@ -10,6 +10,12 @@
 
 namespace fibrecheck {
 
+/// After a new detection: the contacts `found` again take over the force and friction they had in
+/// `previous`, and a contact of `previous` that pushes but was not found again stays a candidate
+/// (appended; dropping it would release its force at once and the fibres would spring back).
+/// Returns, for every contact of the new `found`, its index in `previous` or −1 if it is new.
+std::vector<long> carry_over(const std::vector<Contact>& previous, std::vector<Contact>& found);
+
 /// Finds and measures contacts (seed §4.3.3):
 ///  - point contacts between fibres that cross, by the closest points of their centrelines
 ///    (Eqs. 4.16–4.24);

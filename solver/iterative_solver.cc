@@ -146,27 +146,8 @@ void IterativeSolver::detect_contacts() {
   // list changed.
   gather_forces();
   compute_grid();
-  std::unordered_map<std::uint64_t, std::size_t> previous;
-  for (std::size_t k = 0; k < contacts_.size(); ++k) previous[contacts_[k].key()] = k;
   std::vector<Contact> found = detector_.detect(grid_u_);
-  std::vector<long> origin(found.size(), -1);
-  for (std::size_t i = 0; i < found.size(); ++i) {
-    Contact& c = found[i];
-    auto it = previous.find(c.key());
-    if (it == previous.end()) continue;
-    const Contact& old = contacts_[it->second];
-    c.force = old.force;
-    c.friction = old.friction;
-    origin[i] = static_cast<long>(it->second);
-    previous.erase(it);
-  }
-  // A contact that carries force stays a candidate even if it has opened beyond the margin:
-  // dropping it would release its force at once and the fibres would spring back (a cycle).
-  for (const auto& [key, k] : previous)
-    if (contacts_[k].force > 0.0) {
-      found.push_back(contacts_[k]);
-      origin.push_back(static_cast<long>(k));
-    }
+  const std::vector<long> origin = carry_over(contacts_, found);
   bool unchanged = !contacts_.empty() && found.size() == contacts_.size();
   for (std::size_t i = 0; unchanged && i < origin.size(); ++i)
     unchanged = origin[i] == static_cast<long>(i);
