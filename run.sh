@@ -41,11 +41,22 @@ if [ "$mode" = test ]; then
   exec ctest --output-on-failure -j "$jobs"
 fi
 
-# The main job: every scene through the iterative solver, then a summary table.
+# The main job: every scene through the iterative solver (with a summary table), then through the
+# finite-element reference.
 mkdir -p build/results
 status=0
 ./build/fibrecheck solve scenes/*.json --out-dir build/results || status=$?
 if [ "$status" -ne 0 ] && [ "$status" -ne 3 ]; then exit "$status"; fi
+if ./build/fibrecheck fem --help >/dev/null 2>&1; then
+  for scene in scenes/*.json; do
+    name=$(basename "$scene" .json)
+    echo
+    fem_status=0
+    ./build/fibrecheck fem "$scene" --out "build/results/$name.fem.json" 2>/dev/null \
+      | grep -v '^[|+]' | grep -v '^$' || fem_status=$?
+    if [ "$fem_status" -ne 0 ] && [ "$fem_status" -ne 3 ]; then exit "$fem_status"; fi
+  done
+fi
 echo
 echo "Results (JSON, schema in README.md) are in build/results/."
 exit "$status"
