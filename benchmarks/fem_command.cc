@@ -17,8 +17,8 @@ namespace fibrecheck {
 
 void add_fem_command(CLI::App& app, int& exit_code) {
   struct Arguments {
-    std::string scene, out, vtk, line_contact = "slices", beam_solver = "direct";
-    int slices = 0, refine = 0;
+    std::string scene, out, vtk, line_contact = "slices", beam_solver = "direct", refine;
+    int slices = 0;
     bool quiet = false;
   };
   auto args = std::make_shared<Arguments>();
@@ -37,8 +37,18 @@ void add_fem_command(CLI::App& app, int& exit_code) {
                   "large tows)")
       ->check(CLI::IsMember({"direct", "cg_amg"}));
   fem->add_option("--refine", args->refine,
-                  "Refinements K: elements (and continuous-mode cells) 2^K times smaller")
-      ->check(CLI::Range(0, 12));
+                  "Refinements K (0-12): elements (and continuous-mode cells) 2^K times smaller; "
+                  "auto (the default in continuous mode): refine until the line force settles")
+      ->check([](const std::string& value) -> std::string {
+        if (value == "auto") return "";
+        try {
+          std::size_t used = 0;
+          const int k = std::stoi(value, &used);
+          if (used == value.size() && k >= 0 && k <= 12) return "";
+        } catch (const std::exception&) {
+        }
+        return "--refine: expected a whole number from 0 to 12, or auto";
+      });
   fem->add_option("--vtk", args->vtk,
                   "ParaView file: .vtu = the finite-element beams (w, M, displacement), .vtp = "
                   "fibres and contact forces")
@@ -78,7 +88,10 @@ void add_fem_command(CLI::App& app, int& exit_code) {
     ReferenceOptions options;
     options.line_contact =
         args->line_contact == "continuous" ? LineContact::continuous : LineContact::slices;
-    options.refine = args->refine;
+    const bool continuous = options.line_contact == LineContact::continuous;
+    options.refine_until_converged =
+        args->refine == "auto" || (args->refine.empty() && continuous);
+    options.refine = args->refine.empty() || args->refine == "auto" ? 0 : std::stoi(args->refine);
     options.beam_solver = args->beam_solver == "cg_amg" ? BeamSolver::cg_amg : BeamSolver::direct;
     if (vtu) options.vtu = args->vtk;
     options.print_timing = !args->quiet;
@@ -89,6 +102,9 @@ void add_fem_command(CLI::App& app, int& exit_code) {
       result = solve_reference(scene, options);
     } catch (const std::exception& e) {
       std::cerr << "fibrecheck fem: error: " << e.what() << "\n";
+      // The other processes may wait for this one in a collective call: stop them all.
+      if (dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) > 1)
+        MPI_Abort(MPI_COMM_WORLD, kExitFailure);
       exit_code = kExitFailure;
       return;
     }

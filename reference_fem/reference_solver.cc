@@ -574,8 +574,14 @@ Result ReferenceSolver::run() {
     r.stages.push_back("friction_not_modelled");
     r.warnings.push_back("the reference model is frictionless; contact.friction was ignored");
   }
-  if (r.status == "converged" && r.max_overlap > tolerance_)
-    r.warnings.push_back("overlap above the tolerance remains");
+  if (r.status == "converged" && r.max_overlap > tolerance_) {
+    std::ostringstream out;
+    out.precision(3);
+    out << "an overlap of " << r.max_overlap << " mm remains, above the scene's tolerance of "
+        << tolerance_ << " mm: the round-off of the finite-element solves and of the contact "
+        << "compliance matrix (close contact points make it ill-conditioned)";
+    r.warnings.push_back(out.str());
+  }
   if (processes_ > 1) r.stages.push_back("mpi_" + std::to_string(processes_) + "_processes");
   r.wall_time_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -602,8 +608,48 @@ Result ReferenceSolver::run() {
 }  // namespace
 
 Result solve_reference(const Scene& scene, const ReferenceOptions& options) {
-  ReferenceSolver solver(scene, options);
-  return solver.run();
+  if (!options.refine_until_converged || options.line_contact != LineContact::continuous) {
+    ReferenceSolver solver(scene, options);
+    return solver.run();
+  }
+  auto line_force = [](const Result& r) {
+    double total = 0.0;
+    for (const ContactResult& c : r.contacts)
+      if (c.kind != "point") total += c.total_force;
+    return total;
+  };
+  ReferenceOptions once = options;
+  once.refine_until_converged = false;
+  Result previous;
+  for (int K = options.refine; K <= options.max_refine; ++K) {
+    once.refine = K;
+    ReferenceSolver solver(scene, once);
+    Result r = solver.run();
+    if (options.progress) {
+      std::ostringstream line;
+      line.precision(6);
+      line << "refinement K = " << K << ": line and wall force " << line_force(r) << " N";
+      options.progress(line.str());
+    }
+    if (r.status != "converged") return r;
+    if (K > options.refine) {
+      const double change = std::fabs(line_force(r) - line_force(previous));
+      if (change <= options.refinement_tolerance * line_force(previous)) {
+        std::ostringstream out;
+        out.precision(3);
+        out << "continuous line contact converged at refinement " << K << " (" << r.unknowns
+            << " unknowns): the line force changed by " << change / line_force(previous)
+            << " from the refinement before; " << r.message;
+        r.message = out.str();
+        return r;
+      }
+    }
+    if (line_force(r) == 0.0) return r;  // no line contact: nothing to refine
+    previous = std::move(r);
+  }
+  previous.warnings.push_back("the continuous line contact did not converge to the refinement "
+                              "tolerance by refinement " + std::to_string(options.max_refine));
+  return previous;
 }
 
 }  // namespace fibrecheck

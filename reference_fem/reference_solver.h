@@ -21,6 +21,13 @@ struct ReferenceOptions {
   LineContact line_contact = LineContact::slices;
   /// Refinements: elements (and in continuous mode the Gauss cells) are 2^refine times smaller.
   int refine = 0;
+  /// Continuous mode: refine once more (from `refine`) until the summed line and wall contact
+  /// force changes by less than `refinement_tolerance` (relative) from one refinement to the
+  /// next, at most up to `max_refine`. The line force converges at first order, so the last
+  /// change estimates its remaining error.
+  bool refine_until_converged = false;
+  double refinement_tolerance = 1e-4;
+  int max_refine = 8;
   /// MUMPS (exact to round-off) or CG with BoomerAMG (relative residual 1e-14), for large tows.
   BeamSolver beam_solver = BeamSolver::direct;
   int max_outer_iterations = 30;

@@ -197,6 +197,13 @@ TEST(ReferenceSolver, ContinuousLineContactConvergesUnderRefinement) {
   const Result r = solve_reference(testing::parallel(q, 100), options);
   ASSERT_EQ(r.status, "converged") << r.message;
   EXPECT_LT(std::fabs(force_between(r, "A", "B") - p), 1e-3 * p);
+  // Refined until the line force settles to 1e-3: at first order the last change is the error.
+  options.refine_until_converged = true;
+  options.refinement_tolerance = 1e-3;
+  const Result settled = solve_reference(testing::parallel(q, 5), options);
+  ASSERT_EQ(settled.status, "converged") << settled.message;
+  EXPECT_LT(std::fabs(force_between(settled, "A", "B") - p), 1.5e-3 * p);
+  EXPECT_NE(settled.message.find("converged at refinement"), std::string::npos) << settled.message;
 }
 
 // A fibre pressed onto a wall by a point load at mid-span: R = P − g/C(L/2).
