@@ -206,6 +206,29 @@ TEST(ReferenceSolver, ContinuousLineContactConvergesUnderRefinement) {
   EXPECT_NE(settled.message.find("converged at refinement"), std::string::npos) << settled.message;
 }
 
+// A point load on fibre B where it rests (just touching) across fibre A: the two beams share it
+// by their compliances, R = P·C_B/(C_A + C_B), with the contact where the chords cross.
+TEST(ReferenceSolver, LoadedCrossingSharesTheLoadByCompliance) {
+  Scene s = testing::crossing(0.3, 0.6, 0.0);
+  LoadSpec load;
+  load.fibre = "B";
+  load.position = 0.6;
+  const double P = 1e-4;
+  load.force = {0, 0, -P};
+  s.loads.push_back(load);
+  const double EI = bending_stiffness(0.01, 80000);
+  const double CA = compliance(0.3, 1.0, EI), CB = compliance(0.6, 1.0, EI);
+  const Result r = solve_reference(s);
+  ASSERT_EQ(r.status, "converged") << r.message;
+  EXPECT_NEAR(force_between(r, "A", "B"), P * CB / (CA + CB), 1e-8 * P);
+  ASSERT_EQ(r.contacts.size(), 1u);
+  EXPECT_NEAR(r.contacts[0].points[0].position, 0.3, 1e-12);
+  // The exact energy ½ΣP·v of the two loads on the two beams.
+  const double R = P * CB / (CA + CB);
+  EXPECT_NEAR(r.strain_energy_exact, 0.5 * (R * R * CA + (P - R) * (P - R) * CB),
+              1e-8 * 0.5 * P * P * CB);
+}
+
 // A fibre pressed onto a wall by a point load at mid-span: R = P − g/C(L/2).
 TEST(ReferenceSolver, FibrePressedOntoAWall) {
   Scene s;
