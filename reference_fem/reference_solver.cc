@@ -110,6 +110,13 @@ bool active_set_solve(const Eigen::MatrixXd& W, const Eigen::VectorXd& d0, doubl
     for (std::size_t i = 0; i < add; ++i) pushing[overlapping[i]] = 1;
     const double objective_before = objective(P);
     if (!solve_on_set(z)) {
+      if (add > 1) {
+        // Contacts added together may constrain the same motion (two walls in one plane): the
+        // set is singular, though the problem is not. Take them one at a time instead.
+        for (std::size_t i = 0; i < add; ++i) pushing[overlapping[i]] = 0;
+        one_at_a_time = true;
+        continue;
+      }
       singular = true;
       return false;
     }

@@ -251,6 +251,32 @@ TEST(ReferenceSolver, FibrePressedOntoAWall) {
   EXPECT_NEAR(r.walls[0].force, P - gap / C, 1e-8 * P);
 }
 
+// Two walls in the same plane constrain the same motion twice: the contact problem has many
+// answers (any split between the walls) but one total, R = P − g/C(L/2) — no singular-system
+// failure.
+TEST(ReferenceSolver, TwoWallsInOnePlaneShareTheReaction) {
+  Scene s;
+  s.fibres.push_back(testing::fibre("F", {0, 0, 0}, {1, 0, 0}));
+  const double EI = bending_stiffness(0.01, 80000), C = compliance(0.5, 1.0, EI);
+  const double P = 1e-4, gap = 0.5 * P * C;
+  for (const char* id : {"floor", "second_floor"}) {
+    WallSpec wall;
+    wall.id = id;
+    wall.point = {0, 0, -0.01 - gap};
+    wall.normal = {0, 0, 1};
+    s.walls.push_back(wall);
+  }
+  LoadSpec load;
+  load.fibre = "F";
+  load.force = {0, 0, -P};
+  s.loads.push_back(load);
+  s.contact.slices = 51;
+  const Result r = solve_reference(s);
+  ASSERT_EQ(r.status, "converged") << r.message;
+  ASSERT_EQ(r.walls.size(), 2u);
+  EXPECT_NEAR(r.walls[0].force + r.walls[1].force, P - gap / C, 1e-8 * P);
+}
+
 // An overlap at two pinned supports cannot be resolved: said at once, with no crash on the
 // singular system and nothing non-finite in the result.
 TEST(ReferenceSolver, OverlapAtTwoPinnedSupportsIsUnresolvable) {
