@@ -1,19 +1,22 @@
 #include "mesh_command.h"
 
+#include <deal.II/base/mpi.h>
+
 #include <iostream>
 
 #include "atomic_file.h"
 #include "exit_codes.h"
 #include "fibre_mesh.h"
 #include "input_error.h"
+#include "reference_solver.h"
 #include "scene.h"
 
 namespace fibrecheck {
 
 void add_mesh_command(CLI::App& app, int& exit_code) {
   struct Arguments {
-    std::string scene, out, geo;
-    int slices = 0;
+    std::string scene, out, geo, line_contact = "slices";
+    int slices = 0, refine = 0;
   };
   auto args = std::make_shared<Arguments>();
   CLI::App* mesh =
@@ -23,11 +26,28 @@ void add_mesh_command(CLI::App& app, int& exit_code) {
   mesh->add_option("--geo", args->geo, "Also write the geometry as a Gmsh script (.geo)");
   mesh->add_option("--slices", args->slices, "Cross-sections n (overrides contact.slices)")
       ->check(CLI::Range(1, 1000000));
+  mesh->add_option("--line-contact", args->line_contact,
+                   "Line contacts at the n slices or continuous (as fibrecheck fem)")
+      ->check(CLI::IsMember({"slices", "continuous"}));
+  mesh->add_option("--refine", args->refine, "Refinements K (as fibrecheck fem)")
+      ->check(CLI::Range(0, 12));
   mesh->callback([args, &exit_code] {
     try {
       Scene scene = read_scene(args->scene);
       if (args->slices > 0) scene.contact.slices = args->slices;
-      const MeshOptions options;
+      validate_scene(scene);
+      // The mesh of the reference's first outer iteration, with the same options (its set-up
+      // speaks MPI, as the reference does).
+      int argc = 1;
+      char name[] = "fibrecheck";
+      char* argv_storage[] = {name, nullptr};
+      char** argv = argv_storage;
+      dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+      ReferenceOptions reference;
+      reference.line_contact =
+          args->line_contact == "continuous" ? LineContact::continuous : LineContact::slices;
+      reference.refine = args->refine;
+      const MeshOptions options = reference_mesh_options(scene, reference);
       write_mesh(scene, options, args->out);
       if (!args->geo.empty()) write_file_atomically(args->geo, geo_script(scene, options));
       std::size_t nodes = 0;

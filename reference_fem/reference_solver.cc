@@ -155,8 +155,12 @@ class ReferenceSolver {
   ReferenceSolver(const Scene& scene, const ReferenceOptions& options);
   ~ReferenceSolver();
   Result run();
+  /// The mesh of the first outer iteration: the candidates on the fibres under the scene's loads.
+  MeshOptions first_mesh_options();
 
  private:
+  void collect_stations();
+  MeshOptions mesh_options() const;
   void make_grid();
   void setup_system();
   void assemble_system();
@@ -260,10 +264,8 @@ void ReferenceSolver::detect() {
   contacts_ = std::move(found);
 }
 
-// make_grid: this process's fibres, with nodes at every contact station and sample position,
-// meshed by Gmsh and read by deal.II.
-void ReferenceSolver::make_grid() {
-  dealii::TimerOutput::Scope scope(timer_, "make_grid");
+// Every fibre's contact stations (sorted, each once) and each contact's stations on A and B.
+void ReferenceSolver::collect_stations() {
   stations_.assign(fibres_.size(), {});
   for (const Contact& c : contacts_) {
     stations_[c.a].push_back(c.s_a);
@@ -287,12 +289,30 @@ void ReferenceSolver::make_grid() {
     station_b_[k] =
         contacts_[k].kind == ContactKind::wall ? -1 : station(contacts_[k].b, contacts_[k].s_b);
   }
-  model_.reset();
-  if (std::none_of(owned_.begin(), owned_.end(), [](char o) { return o != 0; })) return;
+}
+
+MeshOptions ReferenceSolver::mesh_options() const {
   MeshOptions mesh;
   mesh.size_per_slice = std::ldexp(1.0, -options_.refine);
   mesh.contact_stations = stations_;
   mesh.sample_stations.assign(fibres_.size(), sample_s_);
+  return mesh;
+}
+
+MeshOptions ReferenceSolver::first_mesh_options() {
+  detect();
+  collect_stations();
+  return mesh_options();
+}
+
+// make_grid: this process's fibres, with nodes at every contact station and sample position,
+// meshed by Gmsh and read by deal.II.
+void ReferenceSolver::make_grid() {
+  dealii::TimerOutput::Scope scope(timer_, "make_grid");
+  collect_stations();
+  model_.reset();
+  if (std::none_of(owned_.begin(), owned_.end(), [](char o) { return o != 0; })) return;
+  MeshOptions mesh = mesh_options();
   mesh.fibres = owned_;
   {
     dealii::TimerOutput::Scope gmsh(timer_, "make_grid: Gmsh");
@@ -613,6 +633,13 @@ Result ReferenceSolver::run() {
 }
 
 }  // namespace
+
+MeshOptions reference_mesh_options(const Scene& scene, const ReferenceOptions& options) {
+  ReferenceOptions serial = options;
+  serial.communicator = MPI_COMM_SELF;
+  ReferenceSolver solver(scene, serial);
+  return solver.first_mesh_options();
+}
 
 Result solve_reference(const Scene& scene, const ReferenceOptions& options) {
   if (!options.refine_until_converged || options.line_contact != LineContact::continuous) {

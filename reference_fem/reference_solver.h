@@ -6,6 +6,7 @@
 #include <string>
 
 #include "beam_model.h"
+#include "fibre_mesh.h"
 #include "result.h"
 #include "scene.h"
 
@@ -55,5 +56,10 @@ struct ReferenceOptions {
 /// shared out among the processes, each meshes and solves its own, and every process ends with the
 /// same result.
 Result solve_reference(const Scene& scene, const ReferenceOptions& options = {});
+
+/// The mesh options of the reference's first outer iteration (what `fibrecheck mesh` writes): nodes
+/// at the contact candidates of the fibres under the scene's loads, refined there, and at the
+/// result's sample positions.
+MeshOptions reference_mesh_options(const Scene& scene, const ReferenceOptions& options = {});
 
 }  // namespace fibrecheck
