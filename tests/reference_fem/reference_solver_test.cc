@@ -291,6 +291,21 @@ TEST(ReferenceSolver, OverlapAtTwoPinnedSupportsIsUnresolvable) {
     for (const Eigen::Vector3d& u : f.displacement) EXPECT_TRUE(u.allFinite());
 }
 
+// The tow needs a second outer iteration (new candidates appear on the deformed fibres): capped
+// at one, the run says so, with a finite result on the last candidates.
+TEST(ReferenceSolver, OuterIterationCapGivesMaxIterations) {
+  const Scene s = read_scene(std::string(FIBRECHECK_SCENES_DIR) + "/small_tow_19.json");
+  ReferenceOptions options;
+  options.max_outer_iterations = 1;
+  const Result r = solve_reference(s, options);
+  EXPECT_EQ(r.status, "max_iterations");
+  EXPECT_EQ(r.criterion, "max_iterations");
+  EXPECT_EQ(r.iterations, 1);
+  EXPECT_NE(r.message.find("outer iterations"), std::string::npos) << r.message;
+  EXPECT_TRUE(std::isfinite(r.strain_energy) && std::isfinite(r.max_overlap));
+  EXPECT_FALSE(r.contacts.empty());
+}
+
 // Friction is not modelled by the reference: the scene runs frictionless and the result says so.
 TEST(ReferenceSolver, FrictionIsReportedAsNotModelled) {
   Scene s = testing::crossing(0.5, 0.5, 1e-3);
