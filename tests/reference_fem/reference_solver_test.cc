@@ -144,11 +144,15 @@ Difference compare(const Result& x, const Result& y) {
   return d;
 }
 
-// The same slices, contact by contact: the reference equals the iterative solver converged far
-// below its usual tolerance (1e-13 mm), on the committed crossing and tow scenes. Contacts take
-// place and normal from the undeformed fibres in both, so there is one answer to agree on.
+// The same slices: the reference equals the iterative solver converged far below its usual
+// tolerance (1e-13 mm), on the committed scenes. Contacts take place and normal from the undeformed
+// fibres in both, so there is one answer to agree on. Contact by contact on the crossing and the
+// tow; on the parallel fibres the deflections, the energy and the line's total force, since there
+// the share of each slice next to a pinned end barely moves the fibres and the iteration settles
+// it last (slices 0–5 and 94–99 still differ by up to 2e-3 of the largest at 1e-13 mm, 2e-4 at
+// 1e-14 mm; the middle 60 slices by 6e-6).
 TEST(ReferenceSolver, CommittedScenesOnSlicesAgreeWithTheConvergedIterativeSolver) {
-  for (const char* name : {"two_fibres_crossing", "small_tow_19"}) {
+  for (const char* name : {"two_fibres_crossing", "parallel_fibres", "small_tow_19"}) {
     Scene s = read_scene(std::string(FIBRECHECK_SCENES_DIR) + "/" + name + ".json");
     s.solver.overlap_tolerance = 1e-13;
     s.solver.rule = UpdateRule::accelerated;
@@ -157,7 +161,16 @@ TEST(ReferenceSolver, CommittedScenesOnSlicesAgreeWithTheConvergedIterativeSolve
     const Result fem = solve_reference(s);
     ASSERT_EQ(fem.status, "converged") << name << ": " << fem.message;
     const Difference d = compare(fem, it);
-    EXPECT_LT(d.force, 1e-6) << name;
+    if (std::string(name) == "parallel_fibres") {
+      ASSERT_EQ(fem.contacts.size(), 1u);
+      ASSERT_EQ(it.contacts.size(), 1u);
+      // The end slices' differences (≤ 2e-3 of a slice force, a dozen slices of 100) bound the
+      // total's: ≤ 5e-5 (measured 1e-5).
+      EXPECT_NEAR(fem.contacts[0].total_force, it.contacts[0].total_force,
+                  5e-5 * it.contacts[0].total_force);
+    } else {
+      EXPECT_LT(d.force, 1e-6) << name;
+    }
     EXPECT_LT(d.displacement, 1e-6) << name;
     EXPECT_NEAR(fem.strain_energy, it.strain_energy, 1e-6 * it.strain_energy) << name;
     // The complementarity conditions hold to round-off.
