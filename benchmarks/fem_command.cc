@@ -64,6 +64,17 @@ void add_fem_command(CLI::App& app, int& exit_code) {
       scene = read_scene(args->scene);
       if (args->slices > 0) scene.contact.slices = args->slices;
       validate_scene(scene);
+      const bool continuous = args->line_contact == "continuous";
+      if (args->refine == "auto" && !continuous)
+        throw InputError("--refine", "", "auto refines the continuous line contact: use it with "
+                                         "--line-contact continuous");
+      // Contacts are told apart by their station number, which has 20 bits.
+      const bool fixed = !args->refine.empty() && args->refine != "auto";
+      if (continuous && fixed &&
+          (2LL * scene.contact.slices << std::stoi(args->refine)) >= (1LL << 20))
+        throw InputError("--refine", "",
+                         "continuous line contact at 2 × contact.slices × 2^K stations: that must "
+                         "stay below 2^20");
       // Output folders exist before the run, so that it cannot fail at the end for want of one.
       for (const std::string& path : {args->out, args->vtk}) {
         const std::filesystem::path folder = std::filesystem::path(path).parent_path();
@@ -92,6 +103,8 @@ void add_fem_command(CLI::App& app, int& exit_code) {
     options.refine_until_converged =
         args->refine == "auto" || (args->refine.empty() && continuous);
     options.refine = args->refine.empty() || args->refine == "auto" ? 0 : std::stoi(args->refine);
+    while (options.max_refine > 0 && (2LL * scene.contact.slices << options.max_refine) >= (1LL << 20))
+      --options.max_refine;
     options.beam_solver = args->beam_solver == "cg_amg" ? BeamSolver::cg_amg : BeamSolver::direct;
     if (vtu) options.vtu = args->vtk;
     options.print_timing = !args->quiet;

@@ -2,6 +2,7 @@
 
 #include <deal.II/base/mpi.h>
 
+#include <filesystem>
 #include <iostream>
 
 #include "atomic_file.h"
@@ -58,9 +59,12 @@ void add_mesh_command(CLI::App& app, int& exit_code) {
     } catch (const InputError& e) {
       std::cerr << "fibrecheck mesh: error: " << e.what() << "\n";
       exit_code = kExitBadInput;
-    } catch (const std::exception& e) {
+    } catch (const std::filesystem::filesystem_error& e) {
       std::cerr << "fibrecheck mesh: error: " << args->out << ": " << e.what() << "\n";
       exit_code = kExitBadInput;
+    } catch (const std::exception& e) {
+      std::cerr << "fibrecheck mesh: error: " << args->out << ": " << e.what() << "\n";
+      exit_code = kExitFailure;
     }
   });
 }

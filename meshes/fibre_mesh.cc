@@ -10,6 +10,7 @@
 #include "atomic_file.h"
 #include "contact_detection.h"
 #include "fibre.h"
+#include "input_error.h"
 
 namespace fibrecheck {
 
@@ -94,9 +95,15 @@ std::vector<FibreStations> mesh_stations(const Scene& scene, const MeshOptions& 
   return stations;
 }
 
-void write_mesh(const Scene& scene, const MeshOptions& options, const std::string& path) {
+namespace {
+void write_mesh_with_gmsh(const Scene& scene, const MeshOptions& options,
+                          const std::string& path) {
   const std::vector<FibreStations> stations = mesh_stations(scene, options);
-  gmsh::initialize();
+  // Gmsh is started for this mesh and shut down however it ends.
+  struct Session {
+    Session() { gmsh::initialize(); }
+    ~Session() { gmsh::finalize(); }
+  } session;
   gmsh::option::setNumber("General.Terminal", 0);
   // Chords never share points: skip the search for duplicates, which grows with the model.
   gmsh::option::setNumber("Geometry.AutoCoherence", 0);
@@ -138,8 +145,22 @@ void write_mesh(const Scene& scene, const MeshOptions& options, const std::strin
   const std::string temporary =
       (target.parent_path() / ("." + target.filename().string() + ".tmp.msh")).string();
   gmsh::write(temporary);
-  gmsh::finalize();
   std::filesystem::rename(temporary, target);
+}
+}  // namespace
+
+void write_mesh(const Scene& scene, const MeshOptions& options, const std::string& path) {
+  const std::filesystem::path folder = std::filesystem::path(path).parent_path();
+  std::error_code error;
+  if (!folder.empty() && !std::filesystem::is_directory(folder) &&
+      !std::filesystem::create_directories(folder, error))
+    throw InputError(path, "", "cannot create its folder: " + error.message());
+  // Gmsh reports errors by throwing strings: turned into exceptions.
+  try {
+    write_mesh_with_gmsh(scene, options, path);
+  } catch (const std::string& message) {
+    throw std::runtime_error("Gmsh: " + message);
+  }
 }
 
 std::string geo_script(const Scene& scene, const MeshOptions& options) {

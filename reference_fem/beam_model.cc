@@ -10,7 +10,6 @@
 #include <deal.II/grid/tria.h>
 #include <deal.II/lac/affine_constraints.h>
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
-#include <deal.II/lac/petsc_precondition.h>
 #include <deal.II/lac/petsc_solver.h>
 #include <deal.II/lac/petsc_sparse_matrix.h>
 #include <deal.II/lac/petsc_vector.h>
@@ -19,6 +18,7 @@
 #include <deal.II/numerics/data_out.h>
 #include <deal.II/numerics/data_postprocessor.h>
 #include <petscksp.h>
+#include <petscpc.h>
 
 #include <cmath>
 #include <fstream>
@@ -35,6 +35,22 @@ namespace {
 // Components of the finite element: deflection and moment in the bending plane of e1, then e2.
 constexpr unsigned int kW[2] = {0, 2};
 constexpr unsigned int kM[2] = {1, 3};
+
+/// PETSc calls report failure by their return code: turned into an exception naming the call.
+void check(PetscErrorCode code, const char* call) {
+  if (code != 0)
+    throw std::runtime_error(std::string("PETSc: ") + call + " failed (error " +
+                             std::to_string(code) + ")");
+}
+
+/// A solve that PETSc says diverged (a failed factorisation, CG out of iterations) is an error.
+void converged(KSP ksp, const char* what) {
+  KSPConvergedReason reason;
+  KSPGetConvergedReason(ksp, &reason);
+  if (reason < 0)
+    throw std::runtime_error(std::string(what) + " did not solve the beam system (PETSc reason " +
+                             std::to_string(static_cast<int>(reason)) + ")");
+}
 
 /// Physical curve tags of the mesh by name (the fibre ids), from its $PhysicalNames block.
 std::map<std::string, int> curve_tags(const std::string& mesh_file) {
@@ -95,6 +111,8 @@ struct BeamModel::Implementation {
   bool matrix_assembled = false;
   /// MUMPS factorisation of the system matrix, made once and reused for every load case.
   KSP direct_solver = nullptr;
+  /// Conjugate gradients with hypre's BoomerAMG on the Laplace matrix (solver cg_amg), set up once.
+  KSP cg_solver = nullptr;
 
   /// For conjugate gradients: the mixed system is symmetric but indefinite, so it is solved as
   /// its two symmetric positive definite halves, per plane: K·m = b for the moment (from
@@ -106,7 +124,6 @@ struct BeamModel::Implementation {
   DoFHandler<1, 3> scalar_dofs{triangulation};
   AffineConstraints<double> scalar_constraints;
   PETScWrappers::SparseMatrix laplace, mass;
-  std::unique_ptr<PETScWrappers::PreconditionBoomerAMG> amg;
   PETScWrappers::MPI::Vector plane_rhs[2], moment[2], deflection[2], mass_times_moment;
   /// Per fibre: node fraction s → the scalar DoF of that vertex.
   std::vector<std::map<double, types::global_dof_index>> scalar_nodes;
@@ -114,6 +131,7 @@ struct BeamModel::Implementation {
 
   ~Implementation() {
     if (direct_solver) KSPDestroy(&direct_solver);
+    if (cg_solver) KSPDestroy(&cg_solver);
   }
   /// Per fibre: node fraction s → the four DoFs (w1, M1, w2, M2) of that vertex.
   std::vector<std::map<double, std::array<types::global_dof_index, 4>>> nodes;
@@ -224,9 +242,17 @@ struct BeamModel::Implementation {
     }
     laplace.compress(VectorOperation::add);
     mass.compress(VectorOperation::add);
-    PETScWrappers::PreconditionBoomerAMG::AdditionalData data;
-    data.symmetric_operator = true;
-    amg = std::make_unique<PETScWrappers::PreconditionBoomerAMG>(laplace, data);
+    // CG stops at a relative decrease of 1e-12 of its (preconditioned) residual; BoomerAMG on a
+    // one-dimensional Laplace matrix is nearly exact, so that takes one or two iterations.
+    check(KSPCreate(PETSC_COMM_SELF, &cg_solver), "KSPCreate");
+    check(KSPSetOperators(cg_solver, laplace, laplace), "KSPSetOperators");
+    check(KSPSetType(cg_solver, KSPCG), "KSPSetType");
+    check(KSPSetTolerances(cg_solver, 1e-12, 0.0, PETSC_DEFAULT, 1000), "KSPSetTolerances");
+    PC pc;
+    check(KSPGetPC(cg_solver, &pc), "KSPGetPC");
+    check(PCSetType(pc, PCHYPRE), "PCSetType");
+    check(PCHYPRESetType(pc, "boomeramg"), "PCHYPRESetType");
+    check(KSPSetUp(cg_solver), "KSPSetUp (BoomerAMG)");
   }
 
   /// Both planes by the split system (see `solver_kind`), then the mixed solution vector filled
@@ -272,10 +298,11 @@ struct BeamModel::Implementation {
       x = 0;
       const double norm = b.l2_norm();
       if (norm == 0.0) return;
-      SolverControl control(10000, 1e-14 * norm);
-      PETScWrappers::SolverCG solver(control, MPI_COMM_SELF);
-      solver.solve(laplace, x, b, *amg);
-      cg_iterations += control.last_step();
+      check(KSPSolve(cg_solver, b, x), "KSPSolve (CG)");
+      converged(cg_solver, "conjugate gradients");
+      PetscInt steps = 0;
+      KSPGetIterationNumber(cg_solver, &steps);
+      cg_iterations += steps;
       scalar_constraints.distribute(x);
     };
     for (int plane = 0; plane < 2; ++plane) {
@@ -389,16 +416,17 @@ struct BeamModel::Implementation {
   /// factorised on the first call and reused for every later load case.
   void solve() {
     if (!direct_solver) {
-      KSPCreate(PETSC_COMM_SELF, &direct_solver);
-      KSPSetOperators(direct_solver, system_matrix, system_matrix);
-      KSPSetType(direct_solver, KSPPREONLY);
+      check(KSPCreate(PETSC_COMM_SELF, &direct_solver), "KSPCreate");
+      check(KSPSetOperators(direct_solver, system_matrix, system_matrix), "KSPSetOperators");
+      check(KSPSetType(direct_solver, KSPPREONLY), "KSPSetType");
       PC pc;
-      KSPGetPC(direct_solver, &pc);
-      PCSetType(pc, PCLU);
-      PCFactorSetMatSolverType(pc, MATSOLVERMUMPS);
-      KSPSetUp(direct_solver);
+      check(KSPGetPC(direct_solver, &pc), "KSPGetPC");
+      check(PCSetType(pc, PCLU), "PCSetType");
+      check(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS), "PCFactorSetMatSolverType");
+      check(KSPSetUp(direct_solver), "KSPSetUp (MUMPS factorisation)");
     }
-    KSPSolve(direct_solver, system_rhs, solution);
+    check(KSPSolve(direct_solver, system_rhs, solution), "KSPSolve (MUMPS)");
+    converged(direct_solver, "MUMPS");
     constraints.distribute(solution);
   }
 };

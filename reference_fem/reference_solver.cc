@@ -32,20 +32,27 @@ namespace {
 /// min ½PᵀWP − Pᵀd0 over P ≥ 0, solved exactly by an active-set method in the manner of
 /// Lawson–Hanson's non-negative least squares: add the contacts that overlap most (by more than
 /// `tolerance`) to the set of pushing contacts, solve W_SS·P_S = d0_S, step back to feasibility
-/// when a force would turn negative, and repeat. Each pass lowers the objective strictly, so no
-/// set comes back and the method ends in a finite number of passes (the plain primal–dual active
-/// set cycles on a dense W). `pushing` holds a first guess of the set (the last outer iteration's)
-/// on entry and the final set on return. Returns false on a singular set (`singular` set) or when
+/// when a force would turn negative (dropping the contact that blocks), and repeat. A pass that
+/// adds one contact lowers the objective strictly, so no set comes back and the method ends in a
+/// finite number of passes (the plain primal–dual active set cycles on a dense W).
+///  - Passes add blocks of the most overlapping contacts (at most max(8, |set|)); when a block
+///    gains nothing or makes the set singular (two walls in one plane), the next pass adds one.
+///  - A single contact that gains nothing (round-off decides it) is set aside until P changes.
+///  - Contacts marked in `excluded` (nothing can move them) are never added.
+/// `pushing` holds a first guess of the set (the last outer iteration's) on entry and the final
+/// set on return. Returns false on a singular single addition (`singular` set) or when
 /// `max_iterations` passes were not enough.
 bool active_set_solve(const Eigen::MatrixXd& W, const Eigen::VectorXd& d0, double tolerance,
-                      int max_iterations, Eigen::VectorXd& P, std::vector<char>& pushing,
-                      int& iterations, bool& singular) {
+                      const std::vector<char>& excluded, int max_iterations, Eigen::VectorXd& P,
+                      std::vector<char>& pushing, int& iterations, bool& singular) {
   const Eigen::Index n = d0.size();
   P = Eigen::VectorXd::Zero(n);
   pushing.resize(n, 0);
   iterations = 0;
   singular = false;
   if (n == 0) return true;
+  for (Eigen::Index k = 0; k < n; ++k)
+    if (excluded[k]) pushing[k] = 0;
   auto solve_on_set = [&](Eigen::VectorXd& z) {
     std::vector<Eigen::Index> index;
     for (Eigen::Index k = 0; k < n; ++k)
@@ -71,8 +78,9 @@ bool active_set_solve(const Eigen::MatrixXd& W, const Eigen::VectorXd& d0, doubl
   // Warm start: the guessed set, less the contacts that would pull, until all push.
   for (;;) {
     if (!solve_on_set(z)) {
-      singular = true;
-      return false;
+      std::fill(pushing.begin(), pushing.end(), 0);  // start afresh instead
+      z.setZero();
+      break;
     }
     bool pulled = false;
     for (Eigen::Index k = 0; k < n; ++k)
@@ -80,10 +88,8 @@ bool active_set_solve(const Eigen::MatrixXd& W, const Eigen::VectorXd& d0, doubl
     if (!pulled) break;
   }
   P = z;
-  // Passes add every overlapping contact at once; when that gains nothing (an added contact
-  // would pull at once, and the step back leaves P where it was), the next pass adds only the
-  // most overlapping one, for which Lawson–Hanson's argument guarantees progress.
   bool one_at_a_time = false;
+  std::vector<char> set_aside(n, 0);
   // W·P over the pushing contacts only: P is zero elsewhere, and few of the candidates push.
   auto W_times = [&](const Eigen::VectorXd& x) {
     Eigen::VectorXd y = Eigen::VectorXd::Zero(n);
@@ -97,7 +103,8 @@ bool active_set_solve(const Eigen::MatrixXd& W, const Eigen::VectorXd& d0, doubl
     std::vector<Eigen::Index> overlapping;
     std::size_t set_size = 0;
     for (Eigen::Index k = 0; k < n; ++k) {
-      if (!pushing[k] && d[k] > tolerance) overlapping.push_back(k);
+      if (!pushing[k] && !excluded[k] && !set_aside[k] && d[k] > tolerance)
+        overlapping.push_back(k);
       set_size += pushing[k] ? 1 : 0;
     }
     if (overlapping.empty()) return true;
@@ -110,10 +117,10 @@ bool active_set_solve(const Eigen::MatrixXd& W, const Eigen::VectorXd& d0, doubl
     for (std::size_t i = 0; i < add; ++i) pushing[overlapping[i]] = 1;
     const double objective_before = objective(P);
     if (!solve_on_set(z)) {
+      for (std::size_t i = 0; i < add; ++i) pushing[overlapping[i]] = 0;
       if (add > 1) {
         // Contacts added together may constrain the same motion (two walls in one plane): the
         // set is singular, though the problem is not. Take them one at a time instead.
-        for (std::size_t i = 0; i < add; ++i) pushing[overlapping[i]] = 0;
         one_at_a_time = true;
         continue;
       }
@@ -122,23 +129,31 @@ bool active_set_solve(const Eigen::MatrixXd& W, const Eigen::VectorXd& d0, doubl
     }
     for (int inner = 0; inner < n + 1; ++inner) {
       double alpha = 1.0;
-      bool blocked = false;
+      Eigen::Index blocking = -1;
       for (Eigen::Index k = 0; k < n; ++k)
         if (pushing[k] && z[k] <= 0.0) {
-          blocked = true;
-          alpha = std::min(alpha, P[k] / (P[k] - z[k]));
+          const double a = P[k] / (P[k] - z[k]);
+          if (blocking < 0 || a < alpha) alpha = a, blocking = k;
         }
-      if (!blocked) break;
+      if (blocking < 0) break;
       P += alpha * (z - P);
+      P[blocking] = 0.0;  // the contact that blocks leaves, whatever round-off left of it
       for (Eigen::Index k = 0; k < n; ++k)
-        if (pushing[k] && P[k] <= 1e-300) pushing[k] = 0, P[k] = 0.0;
+        if (pushing[k] && P[k] <= 0.0) pushing[k] = 0, P[k] = 0.0;
       if (!solve_on_set(z)) {
         singular = true;
         return false;
       }
     }
     P = z.cwiseMax(0.0);
-    one_at_a_time = !(objective(P) < objective_before - 1e-14 * std::fabs(objective_before));
+    const bool progress =
+        objective(P) < objective_before - 1e-14 * std::fabs(objective_before);
+    if (progress) {
+      std::fill(set_aside.begin(), set_aside.end(), 0);
+    } else if (one_at_a_time) {
+      set_aside[overlapping[0]] = 1;
+    }
+    one_at_a_time = !progress;
   }
   return false;
 }
@@ -189,6 +204,7 @@ class ReferenceSolver {
   std::vector<Fibre> fibres_;
   std::vector<char> owned_;  ///< fibres this process meshes and solves
   double tolerance_;
+  double threshold_ = 0.0;  ///< overlaps the active set resolves: far below the tolerance
   Superposition superposition_;  ///< contact geometry of the deformed fibres only
   ContactDetector detector_;
   std::vector<double> sample_s_;
@@ -207,6 +223,7 @@ class ReferenceSolver {
   std::vector<char> pushing_;
   long active_set_iterations_ = 0;
   std::string trouble_;  ///< why the problem could not be solved, if it could not
+  bool non_finite_ = false;  ///< the finite-element solutions were not finite
 };
 
 ReferenceSolver::ReferenceSolver(const Scene& scene, const ReferenceOptions& options)
@@ -216,7 +233,9 @@ ReferenceSolver::ReferenceSolver(const Scene& scene, const ReferenceOptions& opt
       rank_(dealii::Utilities::MPI::this_mpi_process(comm_)),
       processes_(dealii::Utilities::MPI::n_mpi_processes(comm_)),
       pcout_(std::cout, options.print_timing && rank_ == 0),
-      timer_(comm_, pcout_, dealii::TimerOutput::never,
+      // Timed on each process alone (no collective call per phase: a process with nothing to
+      // mesh must not hold the others up); the statistics over processes are gathered at the end.
+      timer_(MPI_COMM_SELF, pcout_, dealii::TimerOutput::never,
              dealii::TimerOutput::wall_times),
       fibres_([&] {
         std::vector<Fibre> f;
@@ -311,15 +330,16 @@ void ReferenceSolver::make_grid() {
   dealii::TimerOutput::Scope scope(timer_, "make_grid");
   collect_stations();
   model_.reset();
-  if (std::none_of(owned_.begin(), owned_.end(), [](char o) { return o != 0; })) return;
+  // A process with more processes than fibres may own none: it then only takes part in the sums.
+  const bool owns = std::any_of(owned_.begin(), owned_.end(), [](char o) { return o != 0; });
   MeshOptions mesh = mesh_options();
   mesh.fibres = owned_;
   {
     dealii::TimerOutput::Scope gmsh(timer_, "make_grid: Gmsh");
-    write_mesh(scene_, mesh, mesh_file_);
+    if (owns) write_mesh(scene_, mesh, mesh_file_);
   }
   dealii::TimerOutput::Scope read(timer_, "make_grid: GridIn");
-  model_ = std::make_unique<BeamModel>(scene_, mesh_file_, owned_, options_.beam_solver);
+  if (owns) model_ = std::make_unique<BeamModel>(scene_, mesh_file_, owned_, options_.beam_solver);
 }
 
 // setup_system: degrees of freedom, supports, the sparsity pattern.
@@ -367,6 +387,10 @@ void ReferenceSolver::assemble_system() {
   }
   sum_over_processes(u0_, comm_);
   sum_over_processes(G, comm_);
+  // The same numbers on every process after the sums, so every process takes the same branch.
+  if (!std::all_of(u0_.begin(), u0_.end(), [](double x) { return std::isfinite(x); }) ||
+      !std::all_of(G.begin(), G.end(), [](double x) { return std::isfinite(x); }))
+    non_finite_ = true;
 
   const Eigen::Index n = static_cast<Eigen::Index>(contacts_.size());
   d0_.resize(n);
@@ -405,22 +429,37 @@ void ReferenceSolver::assemble_system() {
 void ReferenceSolver::solve() {
   dealii::TimerOutput::Scope scope(timer_, "solve");
   const Eigen::Index n = d0_.size();
-  // An overlap at a point neither fibre can move (both pinned there) has no answer.
+  if (non_finite_) {
+    trouble_ = "the finite-element solutions are not finite (a singular beam system?)";
+    for (Contact& c : contacts_) c.force = 0.0;
+    return;
+  }
+  // An overlap at a point neither fibre can move (both pinned there) has no answer; a contact
+  // there that does not overlap is left out of the problem.
   double scale = 0.0;
   for (const Fibre& f : fibres_) scale = std::max(scale, std::pow(f.length, 3) / (48.0 * f.EI));
-  for (Eigen::Index k = 0; k < n; ++k)
-    if (d0_[k] > tolerance_ && W_(k, k) <= 1e-12 * scale) {
+  std::vector<char> excluded(n, 0);
+  for (Eigen::Index k = 0; k < n; ++k) {
+    if (W_(k, k) > 1e-12 * scale) continue;
+    excluded[k] = 1;
+    if (d0_[k] > tolerance_) {
       std::ostringstream out;
       out.precision(3);
       out << "overlap " << d0_[k] << " mm between " << detector_.describe(contacts_[k])
           << " where neither can move (pinned supports): it cannot be resolved";
       trouble_ = out.str();
+      for (Contact& c : contacts_) c.force = 0.0;
       return;
     }
+  }
+  // Overlaps are decided far below the scene's tolerance, but not below the round-off of the
+  // finite-element data (about 1e-9 of the largest overlap under the loads).
+  threshold_ =
+      std::max(1e-6 * tolerance_, 1e-9 * (d0_.size() > 0 ? d0_.cwiseAbs().maxCoeff() : 0.0));
   pushing_.resize(n, 0);
   int iterations = 0;
   bool singular = false;
-  const bool solved = active_set_solve(W_, d0_, 1e-6 * tolerance_,
+  const bool solved = active_set_solve(W_, d0_, threshold_, excluded,
                                        options_.max_active_set_iterations, P_, pushing_,
                                        iterations, singular);
   active_set_iterations_ += iterations;
@@ -456,7 +495,7 @@ bool ReferenceSolver::update_active_set() {
     auto it = was_pushing.find(key);
     if (it != was_pushing.end()) pushing_[k] = it->second;
     if (known.count(key) == 0 &&
-        detector_.overlap_along_normal(contacts_[k], ua[k], ub[k]) > 1e-6 * tolerance_)
+        detector_.overlap_along_normal(contacts_[k], ua[k], ub[k]) > threshold_)
       unchanged = false;
   }
   // Nothing new overlaps: the answer is the one just solved, on the candidates it was solved with.
@@ -511,6 +550,12 @@ void ReferenceSolver::output_results(Result& r) {
   }
   sum_over_processes(u, comm_);
   sum_over_processes(field, comm_);
+  // Never a non-finite number in a result: a failed solve (status diverged) reports zeros.
+  bool finite = true;
+  for (std::vector<double>* values : {&u, &field})
+    for (double& x : *values)
+      if (!std::isfinite(x)) x = 0.0, finite = false;
+  if (!finite) r.warnings.push_back("non-finite displacements were replaced by zero");
 
   std::vector<Eigen::Vector3d> u_a(contacts_.size(), Eigen::Vector3d::Zero());
   std::vector<Eigen::Vector3d> u_b(contacts_.size(), Eigen::Vector3d::Zero());
@@ -560,7 +605,8 @@ Result ReferenceSolver::run() {
     assemble_system();
     solve();
     if (!trouble_.empty()) {
-      r.status = r.criterion = "unresolvable";
+      r.status = non_finite_ ? "diverged" : "unresolvable";
+      r.criterion = non_finite_ ? "non_finite" : "unresolvable";
       r.message = trouble_;
       break;
     }

@@ -163,9 +163,9 @@ TEST_F(Cli, GenerateTowIsDeterministicAndChecksItsOptions) {
 #ifdef FIBRECHECK_WITH_FEM
 TEST_F(Cli, MeshWritesGmshFilesAndRejectsBadScenes) {
   const Outcome ok = run("mesh " + scene("two_fibres_crossing") + " --out " + dir_ +
-                         "m.msh --geo " + dir_ + "m.geo");
+                         "meshes/m.msh --geo " + dir_ + "m.geo");
   EXPECT_EQ(ok.code, 0) << ok.err;
-  EXPECT_NE(slurp(dir_ + "m.msh").find("$PhysicalNames"), std::string::npos);
+  EXPECT_NE(slurp(dir_ + "meshes/m.msh").find("$PhysicalNames"), std::string::npos);
   EXPECT_NE(slurp(dir_ + "m.geo").find("Physical Curve(\"A\""), std::string::npos);
   json negative = crossing();
   negative["fibres"][0]["youngs_modulus"] = 0;
@@ -207,7 +207,9 @@ TEST_F(Cli, FemRejectsBadInputWithoutWritingAnything) {
                              "--line-contact"},
                         Case{"fem " + scene("two_fibres_crossing") + " --refine -1" + out, "--refine"},
                         Case{"fem " + scene("two_fibres_crossing") + " --vtk " + dir_ + "b.vtk" + out,
-                             "--vtk"}}) {
+                             "--vtk"},
+                        Case{"fem " + scene("two_fibres_crossing") + " --refine auto" + out,
+                             "--line-contact continuous"}}) {
     const Outcome bad = run(k.arguments);
     EXPECT_EQ(bad.code, 2) << k.arguments;
     EXPECT_NE(bad.err.find(k.says), std::string::npos) << k.arguments << "\n" << bad.err;
