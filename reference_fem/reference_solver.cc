@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include <Eigen/Dense>
+#include <Eigen/Sparse>
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -42,7 +43,8 @@ namespace {
 /// `pushing` holds a first guess of the set (the last outer iteration's) on entry and the final
 /// set on return. Returns false on a singular single addition (`singular` set) or when
 /// `max_iterations` passes were not enough.
-bool active_set_solve(const Eigen::MatrixXd& W, const Eigen::VectorXd& d0, double tolerance,
+bool active_set_solve(const Eigen::SparseMatrix<double>& W, const Eigen::VectorXd& d0,
+                      double tolerance,
                       const std::vector<char>& excluded, int max_iterations, Eigen::VectorXd& P,
                       std::vector<char>& pushing, int& iterations, bool& singular) {
   const Eigen::Index n = d0.size();
@@ -64,7 +66,7 @@ bool active_set_solve(const Eigen::MatrixXd& W, const Eigen::VectorXd& d0, doubl
     Eigen::VectorXd ds(m);
     for (Eigen::Index i = 0; i < m; ++i) {
       ds[i] = d0[index[i]];
-      for (Eigen::Index j = 0; j < m; ++j) Wss(i, j) = W(index[i], index[j]);
+      for (Eigen::Index j = 0; j < m; ++j) Wss(i, j) = W.coeff(index[i], index[j]);
     }
     const Eigen::LDLT<Eigen::MatrixXd> ldlt(Wss);
     const Eigen::VectorXd zs = ldlt.solve(ds);
@@ -94,7 +96,9 @@ bool active_set_solve(const Eigen::MatrixXd& W, const Eigen::VectorXd& d0, doubl
   auto W_times = [&](const Eigen::VectorXd& x) {
     Eigen::VectorXd y = Eigen::VectorXd::Zero(n);
     for (Eigen::Index k = 0; k < n; ++k)
-      if (x[k] != 0.0) y.noalias() += x[k] * W.col(k);
+      if (x[k] != 0.0)
+        for (Eigen::SparseMatrix<double>::InnerIterator it(W, k); it; ++it)
+          y[it.row()] += x[k] * it.value();
     return y;
   };
   auto objective = [&](const Eigen::VectorXd& x) { return 0.5 * x.dot(W_times(x)) - x.dot(d0); };
@@ -159,8 +163,12 @@ bool active_set_solve(const Eigen::MatrixXd& W, const Eigen::VectorXd& d0, doubl
 }
 
 void sum_over_processes(std::vector<double>& values, MPI_Comm comm) {
-  if (dealii::Utilities::MPI::n_mpi_processes(comm) > 1 && !values.empty())
-    MPI_Allreduce(MPI_IN_PLACE, values.data(), static_cast<int>(values.size()), MPI_DOUBLE, MPI_SUM,
+  if (dealii::Utilities::MPI::n_mpi_processes(comm) == 1) return;
+  // In pieces: MPI counts are ints.
+  constexpr std::size_t piece = std::size_t(1) << 28;
+  for (std::size_t start = 0; start < values.size(); start += piece)
+    MPI_Allreduce(MPI_IN_PLACE, values.data() + start,
+                  static_cast<int>(std::min(piece, values.size() - start)), MPI_DOUBLE, MPI_SUM,
                   comm);
 }
 
@@ -219,7 +227,8 @@ class ReferenceSolver {
   std::unique_ptr<BeamModel> model_;
   std::vector<double> u0_;  ///< displacements at every station under the scene's loads
   Eigen::VectorXd d0_, P_;
-  Eigen::MatrixXd W_;
+  /// W is sparse: two contacts interact only through a fibre they share.
+  Eigen::SparseMatrix<double> W_;
   std::vector<char> pushing_;
   long active_set_iterations_ = 0;
   std::string trouble_;  ///< why the problem could not be solved, if it could not
@@ -409,7 +418,10 @@ void ReferenceSolver::assemble_system() {
     sides[c.a].push_back({k, station_a_[k], wall ? 1.0 : -1.0});
     if (!wall) sides[c.b].push_back({k, station_b_[k], 1.0});
   }
-  W_ = Eigen::MatrixXd::Zero(n, n);
+  std::vector<Eigen::Triplet<double>> entries;
+  std::size_t count = 0;
+  for (const auto& list : sides) count += list.size() * list.size();
+  entries.reserve(count);
   for (std::size_t f = 0; f < fibres_.size(); ++f) {
     const std::size_t m = stations_[f].size();
     const Eigen::Vector3d t = fibres_[f].t;
@@ -418,11 +430,14 @@ void ReferenceSolver::assemble_system() {
       const Eigen::Vector3d nj_across = nj - nj.dot(t) * t;
       for (const Side& k : sides[f]) {
         const Eigen::Vector3d nk = contacts_[k.contact].normal;
-        W_(j.contact, k.contact) += j.alpha * k.alpha * G[g_offset_[f] + j.station * m + k.station] *
-                                    nj_across.dot(nk - nk.dot(t) * t);
+        entries.emplace_back(j.contact, k.contact,
+                             j.alpha * k.alpha * G[g_offset_[f] + j.station * m + k.station] *
+                                 nj_across.dot(nk - nk.dot(t) * t));
       }
     }
   }
+  W_.resize(n, n);
+  W_.setFromTriplets(entries.begin(), entries.end());  // sums the two fibres' parts
 }
 
 // solve: the complementarity problem, exactly, starting from the last pushing set.
@@ -440,7 +455,7 @@ void ReferenceSolver::solve() {
   for (const Fibre& f : fibres_) scale = std::max(scale, std::pow(f.length, 3) / (48.0 * f.EI));
   std::vector<char> excluded(n, 0);
   for (Eigen::Index k = 0; k < n; ++k) {
-    if (W_(k, k) > 1e-12 * scale) continue;
+    if (W_.coeff(k, k) > 1e-12 * scale) continue;
     excluded[k] = 1;
     if (d0_[k] > tolerance_) {
       std::ostringstream out;
