@@ -49,6 +49,16 @@ std::vector<double> station_sizes(const FibreStations& f, const MeshOptions& opt
   return size;
 }
 
+/// Elements on the interval between stations j and j + 1 of a fibre of length L: the smaller of
+/// the two stations' sizes, evenly. (The elements are exact at their nodes whatever their size;
+/// the grading only serves the output. Fixed counts spare Gmsh integrating a size field, which
+/// cost it most of its time on large tows.)
+int interval_elements(const FibreStations& f, const std::vector<double>& size, std::size_t j,
+                      double L) {
+  const double h = std::min(size[j], size[j + 1]);
+  return std::max(1, static_cast<int>(std::ceil((f.s[j + 1] - f.s[j]) * L / h - 1e-9)));
+}
+
 }  // namespace
 
 std::vector<FibreStations> mesh_stations(const Scene& scene, const MeshOptions& options) {
@@ -126,8 +136,12 @@ void write_mesh_with_gmsh(const Scene& scene, const MeshOptions& options,
       const Eigen::Vector3d x = spec.start + f.s[j] * (spec.end - spec.start);
       points[i].push_back(gmsh::model::geo::addPoint(x[0], x[1], x[2], size[j]));
     }
-    for (std::size_t j = 0; j + 1 < points[i].size(); ++j)
+    const double L = (spec.end - spec.start).norm();
+    for (std::size_t j = 0; j + 1 < points[i].size(); ++j) {
       lines[i].push_back(gmsh::model::geo::addLine(points[i][j], points[i][j + 1]));
+      gmsh::model::geo::mesh::setTransfiniteCurve(lines[i].back(),
+                                                  interval_elements(f, size, j, L) + 1);
+    }
   }
   gmsh::model::geo::synchronize();
   for (std::size_t i : meshed) {
@@ -181,8 +195,12 @@ std::string geo_script(const Scene& scene, const MeshOptions& options) {
       out << "Point(" << ++point << ") = {" << x[0] << ", " << x[1] << ", " << x[2] << ", "
           << size[j] << "};\n";
     }
-    for (int p = first_point; p < point; ++p)
+    const double L = (spec.end - spec.start).norm();
+    for (int p = first_point; p < point; ++p) {
       out << "Line(" << ++line << ") = {" << p << ", " << p + 1 << "};\n";
+      out << "Transfinite Curve {" << line << "} = "
+          << interval_elements(f, size, static_cast<std::size_t>(p - first_point), L) + 1 << ";\n";
+    }
     out << "Physical Curve(\"" << spec.id << "\", " << ++group << ") = {";
     for (int l = first_line; l <= line; ++l) out << l << (l < line ? ", " : "");
     out << "};\n";
