@@ -447,6 +447,78 @@ void BeamModel::run(const std::vector<NodalForce>& extra, bool scene_loads) {
   impl_->solve();
 }
 
+std::vector<Eigen::MatrixXd> BeamModel::influence_matrices(
+    const std::vector<std::vector<double>>& stations) {
+  Implementation& m = *impl_;
+  if (m.dof_handler.n_dofs() == 0) m.setup_system();
+  const std::size_t fibres = m.fibres.size();
+  std::vector<Eigen::MatrixXd> G(fibres);
+  std::size_t rounds = 0;
+  for (std::size_t f = 0; f < fibres; ++f) {
+    if (m.nodes[f].empty()) continue;
+    G[f].resize(stations[f].size(), stations[f].size());
+    rounds = std::max(rounds, stations[f].size());
+  }
+  if (m.solver_kind == BeamSolver::cg_amg) {
+    // One right-hand side at a time.
+    std::vector<NodalForce> unit;
+    for (std::size_t i = 0; i < rounds; ++i) {
+      unit.clear();
+      for (std::size_t f = 0; f < fibres; ++f)
+        if (G[f].size() > 0 && i < stations[f].size())
+          unit.push_back({static_cast<int>(f), stations[f][i], m.fibres[f].e1});
+      run(unit, false);
+      for (std::size_t f = 0; f < fibres; ++f)
+        if (G[f].size() > 0 && i < stations[f].size())
+          for (std::size_t j = 0; j < stations[f].size(); ++j)
+            G[f](j, i) = displacement(static_cast<int>(f), stations[f][j]).dot(m.fibres[f].e1);
+    }
+    return G;
+  }
+  // MUMPS: blocks of right-hand sides through the factorisation (MatMatSolve), read back from
+  // the dense solution block. A unit force along e1 enters the w1 row as −1 (−ΣPψ(a)).
+  if (!m.matrix_assembled) run({}, false);  // assembles and factorises
+  std::vector<std::vector<types::global_dof_index>> w1(fibres);
+  for (std::size_t f = 0; f < fibres; ++f)
+    if (G[f].size() > 0)
+      for (double s : stations[f]) w1[f].push_back(m.node(m.nodes, static_cast<int>(f), s)[kW[0]]);
+  Mat factor;
+  PC pc;
+  check(KSPGetPC(m.direct_solver, &pc), "KSPGetPC");
+  check(PCFactorGetMatrix(pc, &factor), "PCFactorGetMatrix");
+  const PetscInt n = static_cast<PetscInt>(m.dof_handler.n_dofs());
+  constexpr std::size_t kBlock = 32;
+  for (std::size_t first = 0; first < rounds; first += kBlock) {
+    const PetscInt columns = static_cast<PetscInt>(std::min(kBlock, rounds - first));
+    Mat B, X;
+    check(MatCreateSeqDense(PETSC_COMM_SELF, n, columns, nullptr, &B), "MatCreateSeqDense");
+    check(MatCreateSeqDense(PETSC_COMM_SELF, n, columns, nullptr, &X), "MatCreateSeqDense");
+    PetscScalar* b = nullptr;
+    check(MatDenseGetArray(B, &b), "MatDenseGetArray");
+    for (PetscInt c = 0; c < columns; ++c)
+      for (std::size_t f = 0; f < fibres; ++f)
+        if (first + c < w1[f].size() && !m.constraints.is_constrained(w1[f][first + c]))
+          b[static_cast<std::size_t>(c) * n + w1[f][first + c]] = -1.0;
+    check(MatDenseRestoreArray(B, &b), "MatDenseRestoreArray");
+    check(MatMatSolve(factor, B, X), "MatMatSolve (MUMPS)");
+    const PetscScalar* x = nullptr;
+    check(MatDenseGetArrayRead(X, &x), "MatDenseGetArrayRead");
+    for (PetscInt c = 0; c < columns; ++c)
+      for (std::size_t f = 0; f < fibres; ++f) {
+        const std::size_t i = first + c;
+        if (i >= w1[f].size()) continue;
+        for (std::size_t j = 0; j < w1[f].size(); ++j)
+          G[f](j, i) = m.constraints.is_constrained(w1[f][j])
+                           ? 0.0
+                           : x[static_cast<std::size_t>(c) * n + w1[f][j]];
+      }
+    check(MatDenseRestoreArrayRead(X, &x), "MatDenseRestoreArrayRead");
+    MatDestroy(&B);
+    MatDestroy(&X);
+  }
+  return G;
+}
+
 long BeamModel::cg_iterations() const {
   return impl_->cg_iterations;
 }

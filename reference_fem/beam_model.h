@@ -53,6 +53,14 @@ class BeamModel {
   /// no node within 1e-9 of the length.
   Eigen::Vector3d displacement(int fibre, double s) const;
 
+  /// Influence matrices of the meshed fibres: for fibre f, G_f(j, k) (mm/N) is its deflection at
+  /// `stations[f][j]` under a unit force across it at `stations[f][k]` (the same in both bending
+  /// planes). One right-hand side loads one station of every fibre at once (the fibres do not
+  /// interact through the beams); with MUMPS the right-hand sides are solved in blocks. Fibres not
+  /// in the mesh get an empty matrix. Fractions must be mesh nodes.
+  std::vector<Eigen::MatrixXd> influence_matrices(
+      const std::vector<std::vector<double>>& stations);
+
   /// Number of unknowns (both planes, w and M).
   std::size_t unknowns() const;
 

@@ -369,29 +369,19 @@ void ReferenceSolver::assemble_system() {
   std::vector<double> G(g_offset_.back(), 0.0);
   if (model_) {
     model_->run({}, true);
-    std::size_t most = 0;
     for (std::size_t f = 0; f < fibres_.size(); ++f)
       if (owned_[f]) {
-        most = std::max(most, stations_[f].size());
         for (std::size_t i = 0; i < stations_[f].size(); ++i) {
           const Eigen::Vector3d u = model_->displacement(static_cast<int>(f), stations_[f][i]);
           for (int d = 0; d < 3; ++d) u0_[3 * (offset_[f] + i) + d] = u[d];
         }
       }
-    std::vector<NodalForce> unit;
-    for (std::size_t i = 0; i < most; ++i) {
-      unit.clear();
-      for (std::size_t f = 0; f < fibres_.size(); ++f)
-        if (owned_[f] && i < stations_[f].size())
-          unit.push_back({static_cast<int>(f), stations_[f][i], fibres_[f].e1});
-      model_->run(unit, false);
-      for (std::size_t f = 0; f < fibres_.size(); ++f) {
-        const std::size_t m = stations_[f].size();
-        if (!owned_[f] || i >= m) continue;
-        for (std::size_t j = 0; j < m; ++j)
-          G[g_offset_[f] + j * m + i] =
-              model_->displacement(static_cast<int>(f), stations_[f][j]).dot(fibres_[f].e1);
-      }
+    const std::vector<Eigen::MatrixXd> influence = model_->influence_matrices(stations_);
+    for (std::size_t f = 0; f < fibres_.size(); ++f) {
+      const std::size_t m = stations_[f].size();
+      if (!owned_[f]) continue;
+      for (std::size_t j = 0; j < m; ++j)
+        for (std::size_t i = 0; i < m; ++i) G[g_offset_[f] + j * m + i] = influence[f](j, i);
     }
   }
   sum_over_processes(u0_, comm_);
