@@ -33,8 +33,8 @@ void add_fem_command(CLI::App& app, int& exit_code) {
                   "points of n*2^K cells)")
       ->check(CLI::IsMember({"slices", "continuous"}));
   fem->add_option("--beam-solver", args->beam_solver,
-                  "Beams' linear solver: direct (MUMPS) or cg_amg (CG with hypre BoomerAMG, for "
-                  "large tows)")
+                  "Beams' linear solver: direct (MUMPS, the default) or cg_amg (CG with hypre "
+                  "BoomerAMG on the system's two Laplace halves)")
       ->check(CLI::IsMember({"direct", "cg_amg"}));
   fem->add_option("--refine", args->refine,
                   "Refinements K (0-12): elements (and continuous-mode cells) 2^K times smaller; "
