@@ -1,6 +1,7 @@
 #include "fibre_mesh.h"
 
 #include <gmsh.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
@@ -156,8 +157,10 @@ void write_mesh_with_gmsh(const Scene& scene, const MeshOptions& options,
   gmsh::model::mesh::generate(1);
   // Write next to the target, then rename: an interrupted run never leaves half a mesh.
   const std::filesystem::path target(path);
-  const std::string temporary =
-      (target.parent_path() / ("." + target.filename().string() + ".tmp.msh")).string();
+  // The process id keeps two runs writing the same mesh at once from sharing the temporary file.
+  const std::string temporary = (target.parent_path() / ("." + target.filename().string() + ".tmp" +
+                                                         std::to_string(getpid()) + ".msh"))
+                                    .string();
   gmsh::write(temporary);
   std::filesystem::rename(temporary, target);
 }

@@ -42,7 +42,9 @@ TEST_P(BeamModelSolvers, NodalDeflectionsAreExactForPointAndUniformLoads) {
   uniform.force = 1e-4 * fibre.e2;
   s.loads.push_back(uniform);
   s.contact.slices = 7;  // a coarse mesh: 7 elements plus the load stations
-  const std::string mesh = ::testing::TempDir() + "skew_beam.msh";
+  // One file per solver: ctest runs the two at once.
+  const std::string mesh = ::testing::TempDir() + "skew_beam_" +
+                           std::to_string(static_cast<int>(GetParam())) + ".msh";
   write_mesh(s, MeshOptions{}, mesh);
   BeamModel model(s, mesh, {}, GetParam());
   model.run();
