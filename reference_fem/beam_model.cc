@@ -448,7 +448,8 @@ void BeamModel::run(const std::vector<NodalForce>& extra, bool scene_loads) {
 }
 
 std::vector<Eigen::MatrixXd> BeamModel::influence_matrices(
-    const std::vector<std::vector<double>>& stations) {
+    const std::vector<std::vector<double>>& stations,
+    const std::function<void(std::size_t, std::size_t)>& progress) {
   Implementation& m = *impl_;
   if (m.dof_handler.n_dofs() == 0) m.setup_system();
   const std::size_t fibres = m.fibres.size();
@@ -472,6 +473,7 @@ std::vector<Eigen::MatrixXd> BeamModel::influence_matrices(
         if (G[f].size() > 0 && i < stations[f].size())
           for (std::size_t j = 0; j < stations[f].size(); ++j)
             G[f](j, i) = displacement(static_cast<int>(f), stations[f][j]).dot(m.fibres[f].e1);
+      if (progress) progress(i + 1, rounds);
     }
     return G;
   }
@@ -515,6 +517,7 @@ std::vector<Eigen::MatrixXd> BeamModel::influence_matrices(
     check(MatDenseRestoreArrayRead(X, &x), "MatDenseRestoreArrayRead");
     MatDestroy(&B);
     MatDestroy(&X);
+    if (progress) progress(first + static_cast<std::size_t>(columns), rounds);
   }
   return G;
 }

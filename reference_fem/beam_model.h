@@ -1,6 +1,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <functional>
 #include <map>
 #include <memory>
 #include <string>
@@ -58,8 +59,10 @@ class BeamModel {
   /// planes). One right-hand side loads one station of every fibre at once (the fibres do not
   /// interact through the beams); with MUMPS the right-hand sides are solved in blocks. Fibres not
   /// in the mesh get an empty matrix. Fractions must be mesh nodes.
+  /// `progress`, if given, hears (right-hand sides done, all of them) now and then.
   std::vector<Eigen::MatrixXd> influence_matrices(
-      const std::vector<std::vector<double>>& stations);
+      const std::vector<std::vector<double>>& stations,
+      const std::function<void(std::size_t, std::size_t)>& progress = {});
 
   /// Number of unknowns (both planes, w and M).
   std::size_t unknowns() const;

@@ -376,7 +376,18 @@ void ReferenceSolver::assemble_system() {
           for (int d = 0; d < 3; ++d) u0_[3 * (offset_[f] + i) + d] = u[d];
         }
       }
-    const std::vector<Eigen::MatrixXd> influence = model_->influence_matrices(stations_);
+    // Long assemblies (fine continuous line contact) report how far they are, every 5 s.
+    auto last = std::chrono::steady_clock::now();
+    const auto report = [&](std::size_t done, std::size_t total) {
+      if (!options_.progress || done == total ||
+          std::chrono::steady_clock::now() - last < std::chrono::seconds(5))
+        return;
+      last = std::chrono::steady_clock::now();
+      options_.progress("assemble_system: " + std::to_string(done) + " of " +
+                        std::to_string(total) + " unit-load right-hand sides");
+    };
+    const std::vector<Eigen::MatrixXd> influence =
+        model_->influence_matrices(stations_, report);
     for (std::size_t f = 0; f < fibres_.size(); ++f) {
       const std::size_t m = stations_[f].size();
       if (!owned_[f]) continue;
