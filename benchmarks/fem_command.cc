@@ -1,13 +1,12 @@
 #include "fem_command.h"
 
-#include <deal.II/base/mpi.h>
-
-#include <filesystem>
 #include <iostream>
 
+#include "atomic_file.h"
 #include "exit_codes.h"
 #include "input_error.h"
 #include "iterative_solver.h"
+#include "mpi_session.h"
 #include "reference_solver.h"
 #include "result.h"
 #include "scene.h"
@@ -66,8 +65,9 @@ void add_fem_command(CLI::App& app, int& exit_code) {
       validate_scene(scene);
       const bool continuous = args->line_contact == "continuous";
       if (args->refine == "auto" && !continuous)
-        throw InputError("--refine", "", "auto refines the continuous line contact: use it with "
-                                         "--line-contact continuous");
+        throw InputError("--refine", "",
+                         "auto refines the continuous line contact: use it with "
+                         "--line-contact continuous");
       // Contacts are told apart by their station number, which has 20 bits.
       const bool fixed = !args->refine.empty() && args->refine != "auto";
       if (continuous && fixed &&
@@ -76,23 +76,14 @@ void add_fem_command(CLI::App& app, int& exit_code) {
                          "continuous line contact at 2 × contact.slices × 2^K stations: that must "
                          "stay below 2^20");
       // Output folders exist before the run, so that it cannot fail at the end for want of one.
-      for (const std::string& path : {args->out, args->vtk}) {
-        const std::filesystem::path folder = std::filesystem::path(path).parent_path();
-        std::error_code error;
-        if (!path.empty() && !folder.empty() && !std::filesystem::is_directory(folder) &&
-            !std::filesystem::create_directories(folder, error))
-          throw InputError(path, "", "cannot create its folder: " + error.message());
-      }
+      for (const std::string& path : {args->out, args->vtk})
+        if (!path.empty()) create_parent_folder(path);
     } catch (const InputError& e) {
       std::cerr << "fibrecheck fem: error: " << e.what() << "\n";
       exit_code = kExitBadInput;
       return;
     }
-    int argc = 1;
-    char name[] = "fibrecheck";
-    char* argv_storage[] = {name, nullptr};
-    char** argv = argv_storage;
-    dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+    const MpiSession mpi;
     // Every process computes the same result; the first one speaks and writes.
     const bool first = dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
     const bool vtu = args->vtk.size() > 4 && args->vtk.substr(args->vtk.size() - 4) == ".vtu";
@@ -100,10 +91,10 @@ void add_fem_command(CLI::App& app, int& exit_code) {
     options.line_contact =
         args->line_contact == "continuous" ? LineContact::continuous : LineContact::slices;
     const bool continuous = options.line_contact == LineContact::continuous;
-    options.refine_until_converged =
-        args->refine == "auto" || (args->refine.empty() && continuous);
+    options.refine_until_converged = args->refine == "auto" || (args->refine.empty() && continuous);
     options.refine = args->refine.empty() || args->refine == "auto" ? 0 : std::stoi(args->refine);
-    while (options.max_refine > 0 && (2LL * scene.contact.slices << options.max_refine) >= (1LL << 20))
+    while (options.max_refine > 0 &&
+           (2LL * scene.contact.slices << options.max_refine) >= (1LL << 20))
       --options.max_refine;
     options.beam_solver = args->beam_solver == "cg_amg" ? BeamSolver::cg_amg : BeamSolver::direct;
     if (vtu) options.vtu = args->vtk;

@@ -1,7 +1,5 @@
 #include "mesh_command.h"
 
-#include <deal.II/base/mpi.h>
-
 #include <filesystem>
 #include <iostream>
 
@@ -9,6 +7,7 @@
 #include "exit_codes.h"
 #include "fibre_mesh.h"
 #include "input_error.h"
+#include "mpi_session.h"
 #include "reference_solver.h"
 #include "scene.h"
 
@@ -39,11 +38,7 @@ void add_mesh_command(CLI::App& app, int& exit_code) {
       validate_scene(scene);
       // The mesh of the reference's first outer iteration, with the same options (its set-up
       // speaks MPI, as the reference does).
-      int argc = 1;
-      char name[] = "fibrecheck";
-      char* argv_storage[] = {name, nullptr};
-      char** argv = argv_storage;
-      dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+      const MpiSession mpi;
       ReferenceOptions reference;
       reference.line_contact =
           args->line_contact == "continuous" ? LineContact::continuous : LineContact::slices;

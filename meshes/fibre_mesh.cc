@@ -11,7 +11,6 @@
 #include "atomic_file.h"
 #include "contact_detection.h"
 #include "fibre.h"
-#include "input_error.h"
 
 namespace fibrecheck {
 
@@ -107,8 +106,7 @@ std::vector<FibreStations> mesh_stations(const Scene& scene, const MeshOptions& 
 }
 
 namespace {
-void write_mesh_with_gmsh(const Scene& scene, const MeshOptions& options,
-                          const std::string& path) {
+void write_mesh_with_gmsh(const Scene& scene, const MeshOptions& options, const std::string& path) {
   const std::vector<FibreStations> stations = mesh_stations(scene, options);
   // Gmsh is started for this mesh and shut down however it ends.
   struct Session {
@@ -167,11 +165,7 @@ void write_mesh_with_gmsh(const Scene& scene, const MeshOptions& options,
 }  // namespace
 
 void write_mesh(const Scene& scene, const MeshOptions& options, const std::string& path) {
-  const std::filesystem::path folder = std::filesystem::path(path).parent_path();
-  std::error_code error;
-  if (!folder.empty() && !std::filesystem::is_directory(folder) &&
-      !std::filesystem::create_directories(folder, error))
-    throw InputError(path, "", "cannot create its folder: " + error.message());
+  create_parent_folder(path);
   // Gmsh reports errors by throwing strings: turned into exceptions.
   try {
     write_mesh_with_gmsh(scene, options, path);
@@ -201,8 +195,9 @@ std::string geo_script(const Scene& scene, const MeshOptions& options) {
     const double L = (spec.end - spec.start).norm();
     for (int p = first_point; p < point; ++p) {
       out << "Line(" << ++line << ") = {" << p << ", " << p + 1 << "};\n";
-      out << "Transfinite Curve {" << line << "} = "
-          << interval_elements(f, size, static_cast<std::size_t>(p - first_point), L) + 1 << ";\n";
+      out << "Transfinite Curve {" << line
+          << "} = " << interval_elements(f, size, static_cast<std::size_t>(p - first_point), L) + 1
+          << ";\n";
     }
     out << "Physical Curve(\"" << spec.id << "\", " << ++group << ") = {";
     for (int l = first_line; l <= line; ++l) out << l << (l < line ? ", " : "");

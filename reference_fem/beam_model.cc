@@ -20,6 +20,7 @@
 #include <petscksp.h>
 #include <petscpc.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <sstream>
@@ -200,7 +201,8 @@ struct BeamModel::Implementation {
       const Fibre& fibre = fibres[fibre_of_material.at(cell->material_id())];
       for (unsigned int v = 0; v < 2; ++v) {
         const Point<3> p = cell->vertex(v);
-        const double s = (Eigen::Vector3d(p[0], p[1], p[2]) - fibre.start).dot(fibre.t) / fibre.length;
+        const double s =
+            (Eigen::Vector3d(p[0], p[1], p[2]) - fibre.start).dot(fibre.t) / fibre.length;
         const types::global_dof_index dof = cell->vertex_dof_index(v, 0);
         scalar_nodes[fibre_of_material.at(cell->material_id())][s] = dof;
         if (std::fabs(s) < 1e-9 || std::fabs(s - 1.0) < 1e-9) scalar_constraints.add_line(dof);
@@ -262,14 +264,9 @@ struct BeamModel::Implementation {
     FEValues<1, 3> values(scalar_fe, quadrature, update_values | update_JxW_values);
     const unsigned int m = scalar_fe.n_dofs_per_cell();
     std::vector<types::global_dof_index> dofs(m);
-    std::vector<Eigen::Vector2d> q(fibres.size(), Eigen::Vector2d::Zero());
-    bool distributed = false;
-    for (const LoadSpec& load : scene.loads)
-      if (scene_loads && load.kind == LoadKind::distributed) {
-        const int f = scene.fibre_index(load.fibre);
-        q[f] += Eigen::Vector2d(load.force.dot(fibres[f].e1), load.force.dot(fibres[f].e2));
-        distributed = true;
-      }
+    const std::vector<Eigen::Vector2d> q = uniform_loads(scene_loads);
+    const bool distributed =
+        std::any_of(q.begin(), q.end(), [](const Eigen::Vector2d& qf) { return !qf.isZero(); });
     for (int plane = 0; plane < 2; ++plane) plane_rhs[plane] = 0;
     for (const auto& cell : scalar_dofs.active_cell_iterators()) {
       if (!distributed) break;
@@ -288,10 +285,8 @@ struct BeamModel::Implementation {
       plane_rhs[0](dof) += force.dot(fibres[f].e1);
       plane_rhs[1](dof) += force.dot(fibres[f].e2);
     };
-    for (const LoadSpec& load : scene.loads)
-      if (scene_loads && load.kind == LoadKind::point)
-        add_point_force(scene.fibre_index(load.fibre), load.position, load.force);
-    for (const NodalForce& force : extra) add_point_force(force.fibre, force.s, force.force);
+    for (const NodalForce& force : point_forces(extra, scene_loads))
+      add_point_force(force.fibre, force.s, force.force);
     auto cg = [&](PETScWrappers::MPI::Vector& x, PETScWrappers::MPI::Vector& b) {
       scalar_constraints.set_zero(b);
       b.compress(VectorOperation::insert);
@@ -339,6 +334,28 @@ struct BeamModel::Implementation {
     return it->second;
   }
 
+  /// Each fibre's uniform load per length in its two bending planes (N/mm), if `scene_loads`.
+  std::vector<Eigen::Vector2d> uniform_loads(bool scene_loads) const {
+    std::vector<Eigen::Vector2d> q(fibres.size(), Eigen::Vector2d::Zero());
+    for (const LoadSpec& load : scene.loads)
+      if (scene_loads && load.kind == LoadKind::distributed) {
+        const int f = scene.fibre_index(load.fibre);
+        q[f] += Eigen::Vector2d(load.force.dot(fibres[f].e1), load.force.dot(fibres[f].e2));
+      }
+    return q;
+  }
+
+  /// The point forces of one load case: the scene's point loads (if `scene_loads`) and `extra`.
+  std::vector<NodalForce> point_forces(const std::vector<NodalForce>& extra,
+                                       bool scene_loads) const {
+    std::vector<NodalForce> forces;
+    for (const LoadSpec& load : scene.loads)
+      if (scene_loads && load.kind == LoadKind::point)
+        forces.push_back({scene.fibre_index(load.fibre), load.position, load.force});
+    forces.insert(forces.end(), extra.begin(), extra.end());
+    return forces;
+  }
+
   /// The mixed form in both planes; uniform loads integrated, point loads at their nodes.
   void assemble_system(const std::vector<NodalForce>& extra, bool scene_loads) {
     const QGauss<1> quadrature(4);
@@ -347,12 +364,7 @@ struct BeamModel::Implementation {
     FullMatrix<double> cell_matrix(n, n);
     Vector<double> cell_rhs(n);
     std::vector<types::global_dof_index> dof_indices(n);
-    std::vector<Eigen::Vector2d> q(fibres.size(), Eigen::Vector2d::Zero());
-    for (const LoadSpec& load : scene.loads)
-      if (scene_loads && load.kind == LoadKind::distributed) {
-        const int f = scene.fibre_index(load.fibre);
-        q[f] += Eigen::Vector2d(load.force.dot(fibres[f].e1), load.force.dot(fibres[f].e2));
-      }
+    const std::vector<Eigen::Vector2d> q = uniform_loads(scene_loads);
     // The matrix does not depend on the loads: assembled once, only the right-hand side each time.
     const bool with_matrix = !matrix_assembled;
     system_rhs = 0;
@@ -394,21 +406,14 @@ struct BeamModel::Implementation {
     }
     if (with_matrix) system_matrix.compress(VectorOperation::add);
     matrix_assembled = true;
-    auto add_point_force = [&](int f, double s, const Eigen::Vector3d& force) {
-      const auto& table = nodes[f];
-      auto it = table.lower_bound(s - 1e-9);
-      if (it == table.end() || std::fabs(it->first - s) > 1e-9)
-        throw std::runtime_error("no mesh node at s = " + std::to_string(s) + " of fibre " +
-                                 fibres[f].id);
-      const Eigen::Vector2d p(force.dot(fibres[f].e1), force.dot(fibres[f].e2));
+    for (const NodalForce& force : point_forces(extra, scene_loads)) {
+      const int f = force.fibre;
+      const auto dofs = node(nodes, f, force.s);
+      const Eigen::Vector2d p(force.force.dot(fibres[f].e1), force.force.dot(fibres[f].e2));
       for (int plane = 0; plane < 2; ++plane)
-        if (!constraints.is_constrained(it->second[kW[plane]]))
-          system_rhs(it->second[kW[plane]]) -= p[plane];  // −Σ P ψ(a)
-    };
-    for (const LoadSpec& load : scene.loads)
-      if (scene_loads && load.kind == LoadKind::point)
-        add_point_force(scene.fibre_index(load.fibre), load.position, load.force);
-    for (const NodalForce& force : extra) add_point_force(force.fibre, force.s, force.force);
+        if (!constraints.is_constrained(dofs[kW[plane]]))
+          system_rhs(dofs[kW[plane]]) -= p[plane];  // −Σ P ψ(a)
+    }
     system_rhs.compress(VectorOperation::add);
   }
 
@@ -527,12 +532,9 @@ long BeamModel::cg_iterations() const {
 }
 
 Eigen::Vector3d BeamModel::displacement(int fibre, double s) const {
-  const auto& table = impl_->nodes.at(fibre);
-  auto it = table.lower_bound(s - 1e-9);
-  if (it == table.end() || std::fabs(it->first - s) > 1e-9)
-    throw std::runtime_error("no mesh node at s = " + std::to_string(s));
+  const auto dofs = impl_->node(impl_->nodes, fibre, s);
   const Fibre& f = impl_->fibres[fibre];
-  return impl_->solution(it->second[kW[0]]) * f.e1 + impl_->solution(it->second[kW[1]]) * f.e2;
+  return impl_->solution(dofs[kW[0]]) * f.e1 + impl_->solution(dofs[kW[1]]) * f.e2;
 }
 
 std::size_t BeamModel::unknowns() const {

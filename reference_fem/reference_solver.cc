@@ -44,9 +44,9 @@ namespace {
 /// set on return. Returns false on a singular single addition (`singular` set) or when
 /// `max_iterations` passes were not enough.
 bool active_set_solve(const Eigen::SparseMatrix<double>& W, const Eigen::VectorXd& d0,
-                      double tolerance,
-                      const std::vector<char>& excluded, int max_iterations, Eigen::VectorXd& P,
-                      std::vector<char>& pushing, int& iterations, bool& singular) {
+                      double tolerance, const std::vector<char>& excluded, int max_iterations,
+                      Eigen::VectorXd& P, std::vector<char>& pushing, int& iterations,
+                      bool& singular) {
   const Eigen::Index n = d0.size();
   P = Eigen::VectorXd::Zero(n);
   pushing.resize(n, 0);
@@ -117,9 +117,11 @@ bool active_set_solve(const Eigen::SparseMatrix<double>& W, const Eigen::VectorX
     const std::size_t add =
         one_at_a_time ? 1 : std::min(overlapping.size(), std::max<std::size_t>(8, set_size));
     std::partial_sort(overlapping.begin(), overlapping.begin() + static_cast<long>(add),
-                      overlapping.end(), [&](Eigen::Index x, Eigen::Index y) { return d[x] > d[y]; });
+                      overlapping.end(),
+                      [&](Eigen::Index x, Eigen::Index y) { return d[x] > d[y]; });
     for (std::size_t i = 0; i < add; ++i) pushing[overlapping[i]] = 1;
-    const double objective_before = objective(P);
+    // ½PᵀWP − Pᵀd0 with W·P = d0 − d, from the product just made.
+    const double objective_before = -0.5 * P.dot(d0 + d);
     if (!solve_on_set(z)) {
       for (std::size_t i = 0; i < add; ++i) pushing[overlapping[i]] = 0;
       if (add > 1) {
@@ -150,8 +152,7 @@ bool active_set_solve(const Eigen::SparseMatrix<double>& W, const Eigen::VectorX
       }
     }
     P = z.cwiseMax(0.0);
-    const bool progress =
-        objective(P) < objective_before - 1e-14 * std::fabs(objective_before);
+    const bool progress = objective(P) < objective_before - 1e-14 * std::fabs(objective_before);
     if (progress) {
       std::fill(set_aside.begin(), set_aside.end(), 0);
     } else if (one_at_a_time) {
@@ -192,6 +193,11 @@ class ReferenceSolver {
   void output_results(Result& r);
 
   void detect();
+  /// The force each contact's fibre A receives, from the contacts' forces.
+  void gather_forces() {
+    force_on_a_.resize(contacts_.size());
+    for (std::size_t k = 0; k < contacts_.size(); ++k) force_on_a_[k] = contacts_[k].force_on_a();
+  }
   int station(int fibre, double s) const;
   Eigen::Vector3d packed(const std::vector<double>& u, int fibre, int station) const {
     const double* v = &u[3 * (offset_[fibre] + station)];
@@ -212,7 +218,7 @@ class ReferenceSolver {
   std::vector<Fibre> fibres_;
   std::vector<char> owned_;  ///< fibres this process meshes and solves
   double tolerance_;
-  double threshold_ = 0.0;  ///< overlaps the active set resolves: far below the tolerance
+  double threshold_ = 0.0;       ///< overlaps the active set resolves: far below the tolerance
   Superposition superposition_;  ///< contact geometry of the deformed fibres only
   ContactDetector detector_;
   std::vector<double> sample_s_;
@@ -231,7 +237,7 @@ class ReferenceSolver {
   Eigen::SparseMatrix<double> W_;
   std::vector<char> pushing_;
   long active_set_iterations_ = 0;
-  std::string trouble_;  ///< why the problem could not be solved, if it could not
+  std::string trouble_;      ///< why the problem could not be solved, if it could not
   bool non_finite_ = false;  ///< the finite-element solutions were not finite
 };
 
@@ -244,8 +250,7 @@ ReferenceSolver::ReferenceSolver(const Scene& scene, const ReferenceOptions& opt
       pcout_(std::cout, options.print_timing && rank_ == 0),
       // Timed on each process alone (no collective call per phase: a process with nothing to
       // mesh must not hold the others up); the statistics over processes are gathered at the end.
-      timer_(MPI_COMM_SELF, pcout_, dealii::TimerOutput::never,
-             dealii::TimerOutput::wall_times),
+      timer_(MPI_COMM_SELF, pcout_, dealii::TimerOutput::never, dealii::TimerOutput::wall_times),
       fibres_([&] {
         std::vector<Fibre> f;
         for (const FibreSpec& spec : scene.fibres)
@@ -261,10 +266,10 @@ ReferenceSolver::ReferenceSolver(const Scene& scene, const ReferenceOptions& opt
   for (std::size_t f = rank_; f < fibres_.size(); f += processes_) owned_[f] = 1;
   const int samples = scene.output.samples;
   for (int j = 0; j < samples; ++j) sample_s_.push_back(static_cast<double>(j) / (samples - 1));
-  mesh_file_ = (std::filesystem::temp_directory_path() /
-                ("fibrecheck_reference_" + std::to_string(getpid()) + "_" +
-                 std::to_string(rank_) + ".msh"))
-                   .string();
+  mesh_file_ =
+      (std::filesystem::temp_directory_path() /
+       ("fibrecheck_reference_" + std::to_string(getpid()) + "_" + std::to_string(rank_) + ".msh"))
+          .string();
 }
 
 ReferenceSolver::~ReferenceSolver() {
@@ -281,8 +286,7 @@ int ReferenceSolver::station(int fibre, double s) const {
 // a contact found again keeps its force, and a pushing contact stays a candidate.
 void ReferenceSolver::detect() {
   superposition_.attach(contacts_);
-  force_on_a_.resize(contacts_.size());
-  for (std::size_t k = 0; k < contacts_.size(); ++k) force_on_a_[k] = contacts_[k].force_on_a();
+  gather_forces();
   std::vector<std::vector<Eigen::Vector3d>> grid(fibres_.size());
   for (std::size_t f = 0; f < fibres_.size(); ++f)
     superposition_.fibre_field(static_cast<int>(f), contacts_, force_on_a_, true, detector_.grid(),
@@ -386,8 +390,7 @@ void ReferenceSolver::assemble_system() {
       options_.progress("assemble_system: " + std::to_string(done) + " of " +
                         std::to_string(total) + " unit-load right-hand sides");
     };
-    const std::vector<Eigen::MatrixXd> influence =
-        model_->influence_matrices(stations_, report);
+    const std::vector<Eigen::MatrixXd> influence = model_->influence_matrices(stations_, report);
     for (std::size_t f = 0; f < fibres_.size(); ++f) {
       const std::size_t m = stations_[f].size();
       if (!owned_[f]) continue;
@@ -413,9 +416,9 @@ void ReferenceSolver::assemble_system() {
   for (Eigen::Index k = 0; k < n; ++k) {
     const Contact& c = contacts_[k];
     const bool wall = c.kind == ContactKind::wall;
-    d0_[k] = detector_.overlap_along_normal(c, packed(u0_, c.a, station_a_[k]),
-                                            wall ? Eigen::Vector3d::Zero().eval()
-                                                 : packed(u0_, c.b, station_b_[k]));
+    d0_[k] = detector_.overlap_along_normal(
+        c, packed(u0_, c.a, station_a_[k]),
+        wall ? Eigen::Vector3d::Zero().eval() : packed(u0_, c.b, station_b_[k]));
     sides[c.a].push_back({k, station_a_[k], wall ? 1.0 : -1.0});
     if (!wall) sides[c.b].push_back({k, station_b_[k], 1.0});
   }
@@ -475,13 +478,14 @@ void ReferenceSolver::solve() {
   pushing_.resize(n, 0);
   int iterations = 0;
   bool singular = false;
-  const bool solved = active_set_solve(W_, d0_, threshold_, excluded,
-                                       options_.max_active_set_iterations, P_, pushing_,
-                                       iterations, singular);
+  const bool solved =
+      active_set_solve(W_, d0_, threshold_, excluded, options_.max_active_set_iterations, P_,
+                       pushing_, iterations, singular);
   active_set_iterations_ += iterations;
   if (singular)
-    trouble_ = "the pushing contacts' compliance matrix is singular (contacts that constrain the "
-               "same motion twice)";
+    trouble_ =
+        "the pushing contacts' compliance matrix is singular (contacts that constrain the "
+        "same motion twice)";
   else if (!solved)
     trouble_ = "the active-set method did not finish in " +
                std::to_string(options_.max_active_set_iterations) + " passes";
@@ -500,8 +504,7 @@ bool ReferenceSolver::update_active_set() {
   std::vector<Contact> solved = contacts_;
   detect();
   superposition_.attach(contacts_);
-  force_on_a_.resize(contacts_.size());
-  for (std::size_t k = 0; k < contacts_.size(); ++k) force_on_a_[k] = contacts_[k].force_on_a();
+  gather_forces();
   std::vector<Eigen::Vector3d> ua, ub;
   superposition_.contact_displacements(contacts_, force_on_a_, true, ua, ub);
   bool unchanged = true;
@@ -522,8 +525,7 @@ bool ReferenceSolver::update_active_set() {
 // output_results: the final state from the finite elements.
 void ReferenceSolver::output_results(Result& r) {
   dealii::TimerOutput::Scope scope(timer_, "output_results");
-  force_on_a_.resize(contacts_.size());
-  for (std::size_t k = 0; k < contacts_.size(); ++k) force_on_a_[k] = contacts_[k].force_on_a();
+  gather_forces();
   std::vector<NodalForce> forces;
   for (std::size_t k = 0; k < contacts_.size(); ++k) {
     const Contact& c = contacts_[k];
@@ -583,7 +585,8 @@ void ReferenceSolver::output_results(Result& r) {
     c.overlap = detector_.overlap_along_normal(c, u_a[k], u_b[k]);
     r.max_overlap = std::max(r.max_overlap, c.overlap);
     if (c.force > 0.0) r.gap_force_residual = std::max(r.gap_force_residual, -c.overlap);
-    r.complementarity_residual = std::max(r.complementarity_residual, std::fabs(c.force * c.overlap));
+    r.complementarity_residual =
+        std::max(r.complementarity_residual, std::fabs(c.force * c.overlap));
   }
   for (std::size_t f = 0; f < fibres_.size(); ++f) {
     FibreResult fr;
@@ -600,8 +603,7 @@ void ReferenceSolver::output_results(Result& r) {
   std::vector<Eigen::Vector3d> ua, ub;
   superposition_.contact_displacements(contacts_, force_on_a_, true, ua, ub,
                                        &r.strain_energy_exact);
-  r.strain_energy =
-      superposition_.trapezium_energy(contacts_, force_on_a_, scene_.contact.slices);
+  r.strain_energy = superposition_.trapezium_energy(contacts_, force_on_a_, scene_.contact.slices);
   r.axial_load_dropped = superposition_.axial_load_dropped(contacts_, force_on_a_);
 }
 
@@ -657,7 +659,8 @@ Result ReferenceSolver::run() {
   if (detector_.point_search()) r.stages.push_back("point_contacts");
   if (detector_.slicing()) r.stages.push_back("slices");
   if (detector_.walls()) r.stages.push_back("walls");
-  if (options_.line_contact == LineContact::continuous) r.stages.push_back("continuous_line_contact");
+  if (options_.line_contact == LineContact::continuous)
+    r.stages.push_back("continuous_line_contact");
   r.stages.push_back(options_.beam_solver == BeamSolver::direct ? "mumps" : "cg_boomeramg");
   if (scene_.contact.friction > 0.0) {
     r.stages.push_back("friction_not_modelled");
@@ -672,16 +675,14 @@ Result ReferenceSolver::run() {
     r.warnings.push_back(out.str());
   }
   if (processes_ > 1) r.stages.push_back("mpi_" + std::to_string(processes_) + "_processes");
-  r.wall_time_s =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  r.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   std::ostringstream timing;
   timing.precision(3);
   timing << "unknowns " << r.unknowns << ", active-set passes " << active_set_iterations_;
   if (options_.beam_solver == BeamSolver::cg_amg)
     timing << ", CG iterations " << (model_ ? model_->cg_iterations() : 0) << " (last mesh)";
   timing << "; wall time per phase (s):";
-  for (const auto& [phase, seconds] :
-       timer_.get_summary_data(dealii::TimerOutput::total_wall_time))
+  for (const auto& [phase, seconds] : timer_.get_summary_data(dealii::TimerOutput::total_wall_time))
     timing << " " << phase << " " << seconds;
   if (!r.message.empty()) r.message += "; ";
   r.message += timing.str();
@@ -743,8 +744,10 @@ Result solve_reference(const Scene& scene, const ReferenceOptions& options) {
     if (line_force(r) == 0.0) return r;  // no line contact: nothing to refine
     previous = std::move(r);
   }
-  previous.warnings.push_back("the continuous line contact did not converge to the refinement "
-                              "tolerance by refinement " + std::to_string(options.max_refine));
+  previous.warnings.push_back(
+      "the continuous line contact did not converge to the refinement "
+      "tolerance by refinement " +
+      std::to_string(options.max_refine));
   return previous;
 }
 

@@ -7,7 +7,17 @@
 #include <fstream>
 #include <stdexcept>
 
+#include "input_error.h"
+
 namespace fibrecheck {
+
+void create_parent_folder(const std::string& path) {
+  const std::filesystem::path folder = std::filesystem::path(path).parent_path();
+  std::error_code error;
+  if (!folder.empty() && !std::filesystem::is_directory(folder) &&
+      !std::filesystem::create_directories(folder, error))
+    throw InputError(path, "", "cannot create its folder: " + error.message());
+}
 
 void write_file_atomically(const std::string& path, const std::string& contents) {
   namespace fs = std::filesystem;

@@ -8,4 +8,8 @@ namespace fibrecheck {
 /// interrupted run never leaves a half-written file. Throws std::runtime_error on failure.
 void write_file_atomically(const std::string& path, const std::string& contents);
 
+/// Makes sure the folder that will hold `path` exists (creating it and its parents); throws
+/// InputError naming `path` when it cannot be made.
+void create_parent_folder(const std::string& path);
+
 }  // namespace fibrecheck

@@ -50,6 +50,48 @@ inline Scene crossing(double sa, double sb, double overlap, double ra = 0.01, do
   return s;
 }
 
+/// Fibre F (length 1 along x, r = 0.01, E = 80 000) with a point load P (−z) at mid-span, `walls`
+/// walls in one plane a gap g below it ("floor", "second_floor"), and 51 slices so that a
+/// station sits at mid-span: R = P − g/C(L/2) if g < P·C(L/2).
+inline Scene pressed_onto_wall(double P, double gap, int walls = 1) {
+  Scene s;
+  s.fibres.push_back(fibre("F", {0, 0, 0}, {1, 0, 0}));
+  const char* ids[2] = {"floor", "second_floor"};
+  for (int i = 0; i < walls; ++i) {
+    WallSpec wall;
+    wall.id = ids[i];
+    wall.point = {0, 0, -0.01 - gap};
+    wall.normal = {0, 0, 1};
+    s.walls.push_back(wall);
+  }
+  LoadSpec load;
+  load.fibre = "F";
+  load.force = {0, 0, -P};
+  s.loads.push_back(load);
+  s.contact.slices = 51;
+  return s;
+}
+
+/// Fibre B resting (just touching) across fibre A at 0.3 of A and 0.6 of B, with a point load P
+/// (−z) on B at the crossing: A receives R = P·C_B/(C_A + C_B).
+inline Scene loaded_crossing(double P) {
+  Scene s = crossing(0.3, 0.6, 0.0);
+  LoadSpec load;
+  load.fibre = "B";
+  load.position = 0.6;
+  load.force = {0, 0, -P};
+  s.loads.push_back(load);
+  return s;
+}
+
+/// Fibres A (along x) and B (along y) whose pinned supports at the origin overlap.
+inline Scene overlapping_supports() {
+  Scene s;
+  s.fibres.push_back(fibre("A", {0, 0, 0}, {1, 0, 0}));
+  s.fibres.push_back(fibre("B", {0, 0, 0.015}, {0, 1, 0.015}));
+  return s;
+}
+
 /// Fibre A resting on fibre B along their whole length (both along x), a uniform load q (N/mm)
 /// pressing A onto B.
 inline Scene parallel(double q, int slices, double ra = 0.01, double rb = 0.008,

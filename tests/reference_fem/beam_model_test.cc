@@ -43,8 +43,8 @@ TEST_P(BeamModelSolvers, NodalDeflectionsAreExactForPointAndUniformLoads) {
   s.loads.push_back(uniform);
   s.contact.slices = 7;  // a coarse mesh: 7 elements plus the load stations
   // One file per solver: ctest runs the two at once.
-  const std::string mesh = ::testing::TempDir() + "skew_beam_" +
-                           std::to_string(static_cast<int>(GetParam())) + ".msh";
+  const std::string mesh =
+      ::testing::TempDir() + "skew_beam_" + std::to_string(static_cast<int>(GetParam())) + ".msh";
   write_mesh(s, MeshOptions{}, mesh);
   BeamModel model(s, mesh, {}, GetParam());
   model.run();

@@ -13,9 +13,11 @@ namespace {
 std::vector<double> forces_and_displacements(const Result& r) {
   std::vector<double> values;
   for (const ContactResult& c : r.contacts)
-    for (const ContactPoint& p : c.points) values.insert(values.end(), p.force.data(), p.force.data() + 3);
+    for (const ContactPoint& p : c.points)
+      values.insert(values.end(), p.force.data(), p.force.data() + 3);
   for (const FibreResult& f : r.fibres)
-    for (const Eigen::Vector3d& u : f.displacement) values.insert(values.end(), u.data(), u.data() + 3);
+    for (const Eigen::Vector3d& u : f.displacement)
+      values.insert(values.end(), u.data(), u.data() + 3);
   return values;
 }
 

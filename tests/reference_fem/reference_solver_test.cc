@@ -136,8 +136,8 @@ Difference compare(const Result& x, const Result& y) {
   for (std::size_t f = 0; f < x.fibres.size(); ++f)
     for (std::size_t j = 0; j < x.fibres[f].displacement.size(); ++j) {
       largest_displacement = std::max(largest_displacement, x.fibres[f].displacement[j].norm());
-      d.displacement = std::max(
-          d.displacement, (x.fibres[f].displacement[j] - y.fibres[f].displacement[j]).norm());
+      d.displacement = std::max(d.displacement,
+                                (x.fibres[f].displacement[j] - y.fibres[f].displacement[j]).norm());
     }
   d.force /= largest_force;
   d.displacement /= largest_displacement;
@@ -222,13 +222,8 @@ TEST(ReferenceSolver, ContinuousLineContactConvergesUnderRefinement) {
 // A point load on fibre B where it rests (just touching) across fibre A: the two beams share it
 // by their compliances, R = P·C_B/(C_A + C_B), with the contact where the chords cross.
 TEST(ReferenceSolver, LoadedCrossingSharesTheLoadByCompliance) {
-  Scene s = testing::crossing(0.3, 0.6, 0.0);
-  LoadSpec load;
-  load.fibre = "B";
-  load.position = 0.6;
   const double P = 1e-4;
-  load.force = {0, 0, -P};
-  s.loads.push_back(load);
+  const Scene s = testing::loaded_crossing(P);
   const double EI = bending_stiffness(0.01, 80000);
   const double CA = compliance(0.3, 1.0, EI), CB = compliance(0.6, 1.0, EI);
   const Result r = solve_reference(s);
@@ -244,21 +239,9 @@ TEST(ReferenceSolver, LoadedCrossingSharesTheLoadByCompliance) {
 
 // A fibre pressed onto a wall by a point load at mid-span: R = P − g/C(L/2).
 TEST(ReferenceSolver, FibrePressedOntoAWall) {
-  Scene s;
-  s.fibres.push_back(testing::fibre("F", {0, 0, 0}, {1, 0, 0}));
   const double EI = bending_stiffness(0.01, 80000), C = compliance(0.5, 1.0, EI);
   const double P = 1e-4, gap = 0.5 * P * C;
-  WallSpec wall;
-  wall.id = "floor";
-  wall.point = {0, 0, -0.01 - gap};
-  wall.normal = {0, 0, 1};
-  s.walls.push_back(wall);
-  LoadSpec load;
-  load.fibre = "F";
-  load.force = {0, 0, -P};
-  s.loads.push_back(load);
-  s.contact.slices = 51;  // a station exactly at mid-span
-  const Result r = solve_reference(s);
+  const Result r = solve_reference(testing::pressed_onto_wall(P, gap));
   ASSERT_EQ(r.status, "converged") << r.message;
   ASSERT_EQ(r.walls.size(), 1u);
   EXPECT_NEAR(r.walls[0].force, P - gap / C, 1e-8 * P);
@@ -268,23 +251,9 @@ TEST(ReferenceSolver, FibrePressedOntoAWall) {
 // answers (any split between the walls) but one total, R = P − g/C(L/2) — no singular-system
 // failure.
 TEST(ReferenceSolver, TwoWallsInOnePlaneShareTheReaction) {
-  Scene s;
-  s.fibres.push_back(testing::fibre("F", {0, 0, 0}, {1, 0, 0}));
   const double EI = bending_stiffness(0.01, 80000), C = compliance(0.5, 1.0, EI);
   const double P = 1e-4, gap = 0.5 * P * C;
-  for (const char* id : {"floor", "second_floor"}) {
-    WallSpec wall;
-    wall.id = id;
-    wall.point = {0, 0, -0.01 - gap};
-    wall.normal = {0, 0, 1};
-    s.walls.push_back(wall);
-  }
-  LoadSpec load;
-  load.fibre = "F";
-  load.force = {0, 0, -P};
-  s.loads.push_back(load);
-  s.contact.slices = 51;
-  const Result r = solve_reference(s);
+  const Result r = solve_reference(testing::pressed_onto_wall(P, gap, 2));
   ASSERT_EQ(r.status, "converged") << r.message;
   ASSERT_EQ(r.walls.size(), 2u);
   EXPECT_NEAR(r.walls[0].force + r.walls[1].force, P - gap / C, 1e-8 * P);
@@ -293,10 +262,7 @@ TEST(ReferenceSolver, TwoWallsInOnePlaneShareTheReaction) {
 // An overlap at two pinned supports cannot be resolved: said at once, with no crash on the
 // singular system and nothing non-finite in the result.
 TEST(ReferenceSolver, OverlapAtTwoPinnedSupportsIsUnresolvable) {
-  Scene s;
-  s.fibres.push_back(testing::fibre("A", {0, 0, 0}, {1, 0, 0}));
-  s.fibres.push_back(testing::fibre("B", {0, 0, 0.015}, {0, 1, 0.015}));
-  const Result r = solve_reference(s);
+  const Result r = solve_reference(testing::overlapping_supports());
   EXPECT_EQ(r.status, "unresolvable");
   EXPECT_NE(r.message.find("A and B"), std::string::npos) << r.message;
   EXPECT_TRUE(std::isfinite(r.strain_energy) && std::isfinite(r.max_overlap));
@@ -339,8 +305,8 @@ TEST(ReferenceSolver, WritesTheBeamsForParaView) {
   ASSERT_EQ(r.status, "converged");
   std::ifstream in(options.vtu);
   const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  for (const char* field : {"<VTKFile", "UnstructuredGrid", "\"w1\"", "\"M2\"", "\"displacement\"",
-                            "\"fibre\""})
+  for (const char* field :
+       {"<VTKFile", "UnstructuredGrid", "\"w1\"", "\"M2\"", "\"displacement\"", "\"fibre\""})
     EXPECT_NE(text.find(field), std::string::npos) << field;
   std::filesystem::remove(options.vtu);
 }

@@ -237,14 +237,9 @@ TEST(GroundTruth, CompactionTestCase) {
 // crossing presses it onto A. Small-deflection contact keeps the contact where the fibres cross, so
 // the two beams share P by their compliances: R = P·C_B/(C_A + C_B) reaches A.
 TEST(GroundTruth, LoadedCrossingSharesTheLoadByCompliance) {
-  Scene s = testing::crossing(0.3, 0.6, 0.0);
-  s.solver.overlap_tolerance = 1e-13;
-  LoadSpec load;
-  load.fibre = "B";
-  load.position = 0.6;
   const double P = 1e-4;
-  load.force = {0, 0, -P};
-  s.loads.push_back(load);
+  Scene s = testing::loaded_crossing(P);
+  s.solver.overlap_tolerance = 1e-13;
   const double EI = testing::bending_stiffness(0.01, 80000);
   const double CA = compliance(0.3, 1.0, EI), CB = compliance(0.6, 1.0, EI);
   const Result r = solve(s);
@@ -257,20 +252,9 @@ TEST(GroundTruth, LoadedCrossingSharesTheLoadByCompliance) {
 // A fibre with a point load P at mid-span above a wall with gap g < P·C: the mid-span slice
 // touches the wall and carries R = P − g/C(L/2); nothing else touches.
 TEST(GroundTruth, FibrePressedOntoAWall) {
-  Scene s;
-  s.fibres.push_back(testing::fibre("F", {0, 0, 0}, {1, 0, 0}));
   const double EI = bending_stiffness(0.01, 80000), C = compliance(0.5, 1.0, EI);
   const double P = 1e-4, gap = 0.5 * P * C;
-  WallSpec wall;
-  wall.id = "floor";
-  wall.point = {0, 0, -0.01 - gap};
-  wall.normal = {0, 0, 1};
-  s.walls.push_back(wall);
-  LoadSpec load;
-  load.fibre = "F";
-  load.force = {0, 0, -P};
-  s.loads.push_back(load);
-  s.contact.slices = 51;  // a slice exactly at mid-span
+  Scene s = testing::pressed_onto_wall(P, gap);
   s.solver.overlap_tolerance = 1e-11;
   const Result r = solve(s);
   ASSERT_EQ(r.status, "converged") << r.message;

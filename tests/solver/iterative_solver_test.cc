@@ -28,10 +28,7 @@ void expect_finite(const Result& r) {
 
 // Two fibres whose pinned supports overlap: no force can separate them there.
 TEST(IterativeSolver, OverlapAtTwoPinnedSupportsIsUnresolvable) {
-  Scene s;
-  s.fibres.push_back(testing::fibre("A", {0, 0, 0}, {1, 0, 0}));
-  s.fibres.push_back(testing::fibre("B", {0, 0, 0.015}, {0, 1, 0.015}));
-  const Result r = solve(s);
+  const Result r = solve(testing::overlapping_supports());
   EXPECT_EQ(r.status, "unresolvable");
   EXPECT_EQ(r.iterations, 0);
   EXPECT_NE(r.message.find("A and B"), std::string::npos) << r.message;
