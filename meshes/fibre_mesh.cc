@@ -1,11 +1,9 @@
 #include "fibre_mesh.h"
 
 #include <gmsh.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
-#include <filesystem>
 #include <sstream>
 
 #include "atomic_file.h"
@@ -62,14 +60,10 @@ int interval_elements(const FibreStations& f, const std::vector<double>& size, s
 }  // namespace
 
 std::vector<FibreStations> mesh_stations(const Scene& scene, const MeshOptions& options) {
-  std::vector<Fibre> fibres;
-  for (const FibreSpec& spec : scene.fibres)
-    fibres.push_back(make_fibre(spec, scene.contact.axis, scene.contact.parallel_angle_deg));
+  const std::vector<Fibre> fibres = make_fibres(scene);
   const int n = scene.contact.slices;
   std::vector<FibreStations> stations(fibres.size());
-  double smallest_radius = INFINITY;
-  for (const Fibre& f : fibres) smallest_radius = std::min(smallest_radius, f.radius);
-  ContactDetector detector(fibres, scene, 0.1 * smallest_radius);
+  const ContactDetector detector(fibres, scene, candidate_margin(fibres));
   for (std::size_t i = 0; i < fibres.size(); ++i) {
     FibreStations& f = stations[i];
     f.id = fibres[i].id;
@@ -81,7 +75,7 @@ std::vector<FibreStations> mesh_stations(const Scene& scene, const MeshOptions& 
     if (detector.slicing() && fibres[i].along_tow_axis) {
       const Eigen::Vector3d axis = scene.contact.axis.normalized();
       const double along = (fibres[i].end - fibres[i].start).dot(axis);
-      for (int j = 0; j < detector.slice_count(); ++j) {
+      for (int j = 0; j < detector.line_quadrature().size(); ++j) {
         const double s = (detector.slice_position(j) - fibres[i].start.dot(axis)) / along;
         if (s > 0.0 && s < 1.0) add_station(f, s, false);
       }
@@ -153,19 +147,12 @@ void write_mesh_with_gmsh(const Scene& scene, const MeshOptions& options, const 
     gmsh::model::setPhysicalName(0, end, id + "/end");
   }
   gmsh::model::mesh::generate(1);
-  // Write next to the target, then rename: an interrupted run never leaves half a mesh.
-  const std::filesystem::path target(path);
-  // The process id keeps two runs writing the same mesh at once from sharing the temporary file.
-  const std::string temporary = (target.parent_path() / ("." + target.filename().string() + ".tmp" +
-                                                         std::to_string(getpid()) + ".msh"))
-                                    .string();
-  gmsh::write(temporary);
-  std::filesystem::rename(temporary, target);
+  // An interrupted run never leaves half a mesh.
+  write_atomically(path, [](const std::string& temporary) { gmsh::write(temporary); });
 }
 }  // namespace
 
 void write_mesh(const Scene& scene, const MeshOptions& options, const std::string& path) {
-  create_parent_folder(path);
   // Gmsh reports errors by throwing strings: turned into exceptions.
   try {
     write_mesh_with_gmsh(scene, options, path);

@@ -25,6 +25,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "atomic_file.h"
 #include "fibre.h"
 #include "input_error.h"
 
@@ -104,7 +105,8 @@ struct BeamModel::Implementation {
   std::vector<Fibre> fibres;
   std::map<types::material_id, int> fibre_of_material;
   Triangulation<1, 3> triangulation;
-  FESystem<1, 3> fe{FE_Q<1, 3>(2), 4};
+  const unsigned int degree;
+  FESystem<1, 3> fe;
   DoFHandler<1, 3> dof_handler{triangulation};
   AffineConstraints<double> constraints;
   PETScWrappers::SparseMatrix system_matrix;
@@ -121,7 +123,7 @@ struct BeamModel::Implementation {
   /// Laplace matrix ∫ψ'φ' and A the mass matrix ∫ψφ/EI on the scalar quadratic element, both with
   /// the supports' zero values; K by CG with hypre's BoomerAMG, set up once.
   BeamSolver solver_kind = BeamSolver::direct;
-  FE_Q<1, 3> scalar_fe{2};
+  FE_Q<1, 3> scalar_fe;
   DoFHandler<1, 3> scalar_dofs{triangulation};
   AffineConstraints<double> scalar_constraints;
   PETScWrappers::SparseMatrix laplace, mass;
@@ -136,12 +138,22 @@ struct BeamModel::Implementation {
   }
   /// Per fibre: node fraction s → the four DoFs (w1, M1, w2, M2) of that vertex.
   std::vector<std::map<double, std::array<types::global_dof_index, 4>>> nodes;
+  /// Per fibre: the fraction at each element's first vertex → the element, for evaluating the
+  /// solution between nodes.
+  std::vector<std::map<double, DoFHandler<1, 3>::active_cell_iterator>> elements;
+  /// The last load case: its point forces and whether the scene's uniform loads were on.
+  std::vector<NodalForce> last_forces;
+  bool last_scene_loads = false;
+  std::vector<char> in_mesh;  ///< per fibre of the scene: in this mesh
 
   Implementation(const Scene& s, const std::string& mesh_file, const std::vector<char>& meshed,
-                 BeamSolver kind)
-      : scene(s), solver_kind(kind) {
-    for (const FibreSpec& spec : scene.fibres)
-      fibres.push_back(make_fibre(spec, scene.contact.axis, scene.contact.parallel_angle_deg));
+                 BeamSolver kind, unsigned int element_degree)
+      : scene(s),
+        degree(element_degree),
+        fe(FE_Q<1, 3>(element_degree), 4),
+        solver_kind(kind),
+        scalar_fe(element_degree) {
+    fibres = make_fibres(scene);
     const auto tags = curve_tags(mesh_file);
     for (std::size_t i = 0; i < fibres.size(); ++i) {
       if (!meshed.empty() && !meshed[i]) continue;
@@ -150,6 +162,8 @@ struct BeamModel::Implementation {
         throw InputError(mesh_file, fibres[i].id, "no physical curve for this fibre");
       fibre_of_material[static_cast<types::material_id>(it->second)] = static_cast<int>(i);
     }
+    in_mesh.assign(fibres.size(), 0);
+    for (const auto& [material, f] : fibre_of_material) in_mesh[f] = 1;
     make_grid(mesh_file);
   }
 
@@ -166,14 +180,14 @@ struct BeamModel::Implementation {
   void setup_system() {
     dof_handler.distribute_dofs(fe);
     nodes.assign(fibres.size(), {});
+    elements.assign(fibres.size(), {});
     constraints.clear();
     for (const auto& cell : dof_handler.active_cell_iterators()) {
       const int f = fibre_of_material.at(cell->material_id());
       const Fibre& fibre = fibres[f];
+      elements[f][std::min(fraction(f, cell->vertex(0)), fraction(f, cell->vertex(1)))] = cell;
       for (unsigned int v = 0; v < 2; ++v) {
-        const Point<3> p = cell->vertex(v);
-        const Eigen::Vector3d x(p[0], p[1], p[2]);
-        const double s = (x - fibre.start).dot(fibre.t) / fibre.length;
+        const double s = fraction(f, cell->vertex(v));
         std::array<types::global_dof_index, 4> dofs;
         for (unsigned int c = 0; c < 4; ++c) dofs[c] = cell->vertex_dof_index(v, c);
         nodes[f][s] = dofs;
@@ -200,9 +214,7 @@ struct BeamModel::Implementation {
     for (const auto& cell : scalar_dofs.active_cell_iterators()) {
       const Fibre& fibre = fibres[fibre_of_material.at(cell->material_id())];
       for (unsigned int v = 0; v < 2; ++v) {
-        const Point<3> p = cell->vertex(v);
-        const double s =
-            (Eigen::Vector3d(p[0], p[1], p[2]) - fibre.start).dot(fibre.t) / fibre.length;
+        const double s = fraction(fibre_of_material.at(cell->material_id()), cell->vertex(v));
         const types::global_dof_index dof = cell->vertex_dof_index(v, 0);
         scalar_nodes[fibre_of_material.at(cell->material_id())][s] = dof;
         if (std::fabs(s) < 1e-9 || std::fabs(s - 1.0) < 1e-9) scalar_constraints.add_line(dof);
@@ -220,7 +232,7 @@ struct BeamModel::Implementation {
       deflection[plane].reinit(MPI_COMM_SELF, n, n);
     }
     mass_times_moment.reinit(MPI_COMM_SELF, n, n);
-    const QGauss<1> quadrature(3);
+    const QGauss<1> quadrature(degree + 1);
     FEValues<1, 3> values(scalar_fe, quadrature,
                           update_values | update_gradients | update_JxW_values);
     const unsigned int m = scalar_fe.n_dofs_per_cell();
@@ -260,7 +272,7 @@ struct BeamModel::Implementation {
   /// Both planes by the split system (see `solver_kind`), then the mixed solution vector filled
   /// from the scalar ones, so every later use sees one kind of solution.
   void solve_split(const std::vector<NodalForce>& extra, bool scene_loads) {
-    const QGauss<1> quadrature(3);
+    const QGauss<1> quadrature(degree + 1);
     FEValues<1, 3> values(scalar_fe, quadrature, update_values | update_JxW_values);
     const unsigned int m = scalar_fe.n_dofs_per_cell();
     std::vector<types::global_dof_index> dofs(m);
@@ -323,6 +335,36 @@ struct BeamModel::Implementation {
     solution.compress(VectorOperation::insert);
   }
 
+  /// Fraction of fibre f's length at which a mesh point lies.
+  double fraction(int f, const Point<3>& p) const {
+    const Fibre& fibre = fibres[f];
+    return (Eigen::Vector3d(p[0], p[1], p[2]) - fibre.start).dot(fibre.t) / fibre.length;
+  }
+
+  /// The four fields (w1, M1, w2, M2) of the last solution at fraction s of fibre f: the nodal
+  /// values at a node, else the element's shape functions at s.
+  std::array<double, 4> fields(int f, double s) const {
+    std::array<double, 4> value{};
+    const auto& nodes_of_fibre = nodes.at(f);
+    auto node_it = nodes_of_fibre.lower_bound(s - 1e-9);
+    if (node_it != nodes_of_fibre.end() && std::fabs(node_it->first - s) <= 1e-9) {
+      for (unsigned int c = 0; c < 4; ++c) value[c] = solution(node_it->second[c]);
+      return value;
+    }
+    const auto& elements_of_fibre = elements.at(f);
+    auto it = elements_of_fibre.upper_bound(s);
+    if (it == elements_of_fibre.begin() || s < 0.0 || s > 1.0)
+      throw std::runtime_error("s = " + std::to_string(s) + " lies outside fibre " + fibres[f].id);
+    const auto& cell = std::prev(it)->second;
+    const double s0 = fraction(f, cell->vertex(0)), s1 = fraction(f, cell->vertex(1));
+    const Point<1> xi((s - s0) / (s1 - s0));
+    std::vector<types::global_dof_index> dofs(fe.n_dofs_per_cell());
+    cell->get_dof_indices(dofs);
+    for (unsigned int i = 0; i < dofs.size(); ++i)
+      value[fe.system_to_component_index(i).first] += solution(dofs[i]) * fe.shape_value(i, xi);
+    return value;
+  }
+
   /// The DoF of the node at fraction s of fibre f in one of the node tables.
   template <typename Table>
   typename Table::value_type::mapped_type node(const Table& table, int f, double s) const {
@@ -349,16 +391,18 @@ struct BeamModel::Implementation {
   std::vector<NodalForce> point_forces(const std::vector<NodalForce>& extra,
                                        bool scene_loads) const {
     std::vector<NodalForce> forces;
-    for (const LoadSpec& load : scene.loads)
-      if (scene_loads && load.kind == LoadKind::point)
-        forces.push_back({scene.fibre_index(load.fibre), load.position, load.force});
+    for (const LoadSpec& load : scene.loads) {
+      const int f = scene.fibre_index(load.fibre);
+      if (scene_loads && load.kind == LoadKind::point && in_mesh[f])
+        forces.push_back({f, load.position, load.force});
+    }
     forces.insert(forces.end(), extra.begin(), extra.end());
     return forces;
   }
 
   /// The mixed form in both planes; uniform loads integrated, point loads at their nodes.
   void assemble_system(const std::vector<NodalForce>& extra, bool scene_loads) {
-    const QGauss<1> quadrature(4);
+    const QGauss<1> quadrature(degree + 2);
     FEValues<1, 3> fe_values(fe, quadrature, update_values | update_gradients | update_JxW_values);
     const unsigned int n = fe.n_dofs_per_cell();
     FullMatrix<double> cell_matrix(n, n);
@@ -437,13 +481,17 @@ struct BeamModel::Implementation {
 };
 
 BeamModel::BeamModel(const Scene& scene, const std::string& mesh_file,
-                     const std::vector<char>& fibres, BeamSolver solver)
-    : impl_(std::make_unique<Implementation>(scene, mesh_file, fibres, solver)) {}
+                     const std::vector<char>& fibres, BeamSolver solver, unsigned int degree)
+    : impl_(std::make_unique<Implementation>(scene, mesh_file, fibres, solver, degree)) {
+  if (degree < 1 || degree > 2) throw std::invalid_argument("BeamModel: degree must be 1 or 2");
+}
 
 BeamModel::~BeamModel() = default;
 
 void BeamModel::run(const std::vector<NodalForce>& extra, bool scene_loads) {
   if (impl_->dof_handler.n_dofs() == 0) impl_->setup_system();
+  impl_->last_forces = impl_->point_forces(extra, scene_loads);
+  impl_->last_scene_loads = scene_loads;
   if (impl_->solver_kind == BeamSolver::cg_amg) {
     impl_->solve_split(extra, scene_loads);
     return;
@@ -532,9 +580,76 @@ long BeamModel::cg_iterations() const {
 }
 
 Eigen::Vector3d BeamModel::displacement(int fibre, double s) const {
-  const auto dofs = impl_->node(impl_->nodes, fibre, s);
+  const std::array<double, 4> value = impl_->fields(fibre, s);
   const Fibre& f = impl_->fibres[fibre];
-  return impl_->solution(dofs[kW[0]]) * f.e1 + impl_->solution(dofs[kW[1]]) * f.e2;
+  return value[kW[0]] * f.e1 + value[kW[1]] * f.e2;
+}
+
+Eigen::Vector2d BeamModel::moment(int fibre, double s) const {
+  const std::array<double, 4> value = impl_->fields(fibre, s);
+  return {value[kM[0]], value[kM[1]]};
+}
+
+double BeamModel::strain_energy() const {
+  const Implementation& m = *impl_;
+  // M_h has the element's degree p: p + 1 Gauss points integrate M_h² exactly.
+  const QGauss<1> quadrature(m.degree + 1);
+  FEValues<1, 3> values(m.fe, quadrature, update_values | update_JxW_values);
+  std::vector<types::global_dof_index> dofs(m.fe.n_dofs_per_cell());
+  double energy = 0.0;
+  for (const auto& cell : m.dof_handler.active_cell_iterators()) {
+    const double EI = m.fibres[m.fibre_of_material.at(cell->material_id())].EI;
+    values.reinit(cell);
+    cell->get_dof_indices(dofs);
+    for (unsigned int k = 0; k < quadrature.size(); ++k) {
+      double M[4] = {0, 0, 0, 0};
+      for (unsigned int i = 0; i < dofs.size(); ++i)
+        M[m.fe.system_to_component_index(i).first] +=
+            m.solution(dofs[i]) * values.shape_value(i, k);
+      energy += (M[kM[0]] * M[kM[0]] + M[kM[1]] * M[kM[1]]) / (2.0 * EI) * values.JxW(k);
+    }
+  }
+  return energy;
+}
+
+double BeamModel::load_work() const {
+  const Implementation& m = *impl_;
+  double work = 0.0;
+  for (const NodalForce& force : m.last_forces)
+    work += force.force.dot(displacement(force.fibre, force.s));
+  // ∫q·w over the elements: w_h has degree p, p + 1 Gauss points are exact for q·w_h.
+  const std::vector<Eigen::Vector2d> q = m.uniform_loads(m.last_scene_loads);
+  const QGauss<1> quadrature(m.degree + 1);
+  FEValues<1, 3> values(m.fe, quadrature, update_values | update_JxW_values);
+  std::vector<types::global_dof_index> dofs(m.fe.n_dofs_per_cell());
+  for (const auto& cell : m.dof_handler.active_cell_iterators()) {
+    const int f = m.fibre_of_material.at(cell->material_id());
+    if (q[f].isZero()) continue;
+    values.reinit(cell);
+    cell->get_dof_indices(dofs);
+    for (unsigned int k = 0; k < quadrature.size(); ++k) {
+      double w[4] = {0, 0, 0, 0};
+      for (unsigned int i = 0; i < dofs.size(); ++i)
+        w[m.fe.system_to_component_index(i).first] +=
+            m.solution(dofs[i]) * values.shape_value(i, k);
+      work += (q[f][0] * w[kW[0]] + q[f][1] * w[kW[1]]) * values.JxW(k);
+    }
+  }
+  return 0.5 * work;
+}
+
+double BeamModel::axial_load_dropped() const {
+  const Implementation& m = *impl_;
+  double total = 0.0;
+  for (const NodalForce& force : m.last_forces)
+    total += std::fabs(force.force.dot(m.fibres[force.fibre].t));
+  if (m.last_scene_loads)
+    for (const LoadSpec& load : m.scene.loads) {
+      const int f = m.scene.fibre_index(load.fibre);
+      if (load.kind == LoadKind::distributed && m.in_mesh[f])
+        total += std::fabs(load.force.dot(m.fibres[f].t)) * m.fibres[f].length;
+    }
+  return total;
 }
 
 std::size_t BeamModel::unknowns() const {
@@ -561,13 +676,13 @@ void BeamModel::write_vtu(const std::string& path, const std::string& record,
     fibre[cell->active_cell_index()] = m.fibre_of_material.at(cell->material_id());
   data_out.add_data_vector(fibre, "fibre", DataOut<1, 3>::type_cell_data);
   data_out.build_patches();
-  std::ofstream out(path);
-  if (!out) throw std::runtime_error("cannot write " + path);
-  data_out.write_vtu(out);
+  std::ostringstream vtu;
+  data_out.write_vtu(vtu);
+  write_file_atomically(path, vtu.str());
   if (!record.empty()) {
-    std::ofstream collection(record);
-    if (!collection) throw std::runtime_error("cannot write " + record);
+    std::ostringstream collection;
     data_out.write_pvtu_record(collection, pieces);
+    write_file_atomically(record, collection.str());
   }
 }
 

@@ -31,7 +31,8 @@ struct NodalForce {
 /// with w = 0 and M = 0 at both pinned supports (both essential). Each equation is a 1-D Laplace
 /// problem, whose finite-element solution is exact at the nodes; with quadratic elements the
 /// moment of a uniform load is represented exactly too, so nodal deflections are exact for point
-/// loads at nodes and uniform loads (Eqs. 4.10–4.13).
+/// loads at nodes and uniform loads (Eqs. 4.10–4.13). Linear elements (`degree` 1) are there to
+/// study the finite element itself: their moment is only the interpolant of the exact one.
 ///
 /// Like deal.II's tutorial programs, only `run()` does the work: make_grid, setup_system,
 /// assemble_system, solve. The fibres do not interact through the beams, so the mesh may hold any
@@ -41,7 +42,7 @@ class BeamModel {
   /// Reads the fibres' mesh (written by `write_mesh`) for the scene; `fibres` marks the fibres the
   /// mesh holds (by index in the scene; empty: all of them).
   BeamModel(const Scene& scene, const std::string& mesh_file, const std::vector<char>& fibres = {},
-            BeamSolver solver = BeamSolver::direct);
+            BeamSolver solver = BeamSolver::direct, unsigned int degree = 2);
   ~BeamModel();
 
   /// Degrees of freedom, supports and the sparsity pattern (done by the first `run` otherwise).
@@ -50,9 +51,26 @@ class BeamModel {
   /// Solves under `extra` forces at mesh nodes, plus the scene's own loads if `scene_loads`.
   void run(const std::vector<NodalForce>& extra = {}, bool scene_loads = true);
 
-  /// Displacement (mm) of fibre `fibre` at the mesh node nearest fraction `s`; throws if there is
-  /// no node within 1e-9 of the length.
+  /// Displacement (mm) of a meshed fibre at fraction `s` of its length: the nodal value at a mesh
+  /// node (within 1e-9 of the length), else the finite-element field inside its element.
   Eigen::Vector3d displacement(int fibre, double s) const;
+
+  /// Bending moments (N·mm) in the fibre's two bending planes (e1, e2) at fraction `s`, from the
+  /// moment unknowns as `displacement` does.
+  Eigen::Vector2d moment(int fibre, double s) const;
+
+  /// Strain energy Σ∫(M1² + M2²)/(2EI) dx (N·mm, Eq. 4.34) of the last solution over every element
+  /// of the meshed fibres, by Gauss quadrature exact for the element's M².
+  double strain_energy() const;
+
+  /// The work of the last load case, ½(ΣP·u(a) + ∫q·u dx) (N·mm), from the finite-element
+  /// displacements at the point forces and over the elements for uniform loads: equal to
+  /// `strain_energy` by the mixed form's energy identity.
+  double load_work() const;
+
+  /// Σ|axial part| (N) of the last load case's forces, which the beams drop (a uniform load counts
+  /// with its total over the length).
+  double axial_load_dropped() const;
 
   /// Influence matrices of the meshed fibres: for fibre f, G_f(j, k) (mm/N) is its deflection at
   /// `stations[f][j]` under a unit force across it at `stations[f][k]` (the same in both bending

@@ -19,11 +19,12 @@
 #include <sstream>
 
 #include "beam_model.h"
+#include "carry_over.h"
 #include "contact_detection.h"
 #include "contact_results.h"
 #include "fibre.h"
 #include "fibre_mesh.h"
-#include "superposition.h"
+#include "unresolvable_overlap.h"
 
 namespace fibrecheck {
 
@@ -192,7 +193,12 @@ class ReferenceSolver {
   bool update_active_set();
   void output_results(Result& r);
 
+  void deform_under_scene_loads();
+  void deform();
   void detect();
+  void displacements_at_contacts(std::vector<Eigen::Vector3d>& u_a,
+                                 std::vector<Eigen::Vector3d>& u_b) const;
+  std::vector<NodalForce> nodal_forces() const;
   /// The force each contact's fibre A receives, from the contacts' forces.
   void gather_forces() {
     force_on_a_.resize(contacts_.size());
@@ -202,11 +208,6 @@ class ReferenceSolver {
   Eigen::Vector3d packed(const std::vector<double>& u, int fibre, int station) const {
     const double* v = &u[3 * (offset_[fibre] + station)];
     return {v[0], v[1], v[2]};
-  }
-  double smallest_radius() const {
-    double r = INFINITY;
-    for (const Fibre& f : fibres_) r = std::min(r, f.radius);
-    return r;
   }
 
   const Scene& scene_;
@@ -218,9 +219,10 @@ class ReferenceSolver {
   std::vector<Fibre> fibres_;
   std::vector<char> owned_;  ///< fibres this process meshes and solves
   double tolerance_;
-  double threshold_ = 0.0;       ///< overlaps the active set resolves: far below the tolerance
-  Superposition superposition_;  ///< contact geometry of the deformed fibres only
+  double threshold_ = 0.0;  ///< overlaps the active set resolves: far below the tolerance
   ContactDetector detector_;
+  /// Each fibre's finite-element displacements (mm) at the detector's grid, for detection.
+  std::vector<std::vector<Eigen::Vector3d>> grid_u_;
   std::vector<double> sample_s_;
 
   std::vector<Contact> contacts_;
@@ -251,17 +253,14 @@ ReferenceSolver::ReferenceSolver(const Scene& scene, const ReferenceOptions& opt
       // Timed on each process alone (no collective call per phase: a process with nothing to
       // mesh must not hold the others up); the statistics over processes are gathered at the end.
       timer_(MPI_COMM_SELF, pcout_, dealii::TimerOutput::never, dealii::TimerOutput::wall_times),
-      fibres_([&] {
-        std::vector<Fibre> f;
-        for (const FibreSpec& spec : scene.fibres)
-          f.push_back(make_fibre(spec, scene.contact.axis, scene.contact.parallel_angle_deg));
-        return f;
-      }()),
+      fibres_(make_fibres(scene)),
       tolerance_(scene.overlap_tolerance()),
-      superposition_(fibres_, scene),
-      detector_(fibres_, scene, 0.1 * smallest_radius()) {
-  if (options_.line_contact == LineContact::continuous)
-    detector_.use_gauss_stations(scene.contact.slices << options_.refine);
+      detector_(fibres_, scene, candidate_margin(fibres_),
+                options.line_contact == LineContact::continuous
+                    ? LineQuadrature::gauss(scene.contact.slices << options.refine)
+                    : LineQuadrature::slices(scene.contact.slices)),
+      grid_u_(fibres_.size(),
+              std::vector<Eigen::Vector3d>(detector_.grid().size(), Eigen::Vector3d::Zero())) {
   owned_.assign(fibres_.size(), 0);
   for (std::size_t f = rank_; f < fibres_.size(); f += processes_) owned_[f] = 1;
   const int samples = scene.output.samples;
@@ -282,18 +281,84 @@ int ReferenceSolver::station(int fibre, double s) const {
   return static_cast<int>(std::lower_bound(list.begin(), list.end(), s - 1e-12) - list.begin());
 }
 
-// Candidates on the fibres deformed by the current forces (the iterative solver's detection);
-// a contact found again keeps its force, and a pushing contact stays a candidate.
-void ReferenceSolver::detect() {
-  superposition_.attach(contacts_);
+// The forces on this process's fibres: the contact forces that push, on both sides.
+std::vector<NodalForce> ReferenceSolver::nodal_forces() const {
+  std::vector<NodalForce> forces;
+  for (std::size_t k = 0; k < contacts_.size(); ++k) {
+    const Contact& c = contacts_[k];
+    if (!(c.force > 0.0)) continue;
+    if (owned_[c.a]) forces.push_back({c.a, c.s_a, force_on_a_[k]});
+    if (c.kind != ContactKind::wall && owned_[c.b]) forces.push_back({c.b, c.s_b, -force_on_a_[k]});
+  }
+  return forces;
+}
+
+// deform: the finite-element fibres under the scene's loads and the current contact forces, and
+// their displacements at the detector's grid (every process ends with every fibre's).
+void ReferenceSolver::deform() {
   gather_forces();
-  std::vector<std::vector<Eigen::Vector3d>> grid(fibres_.size());
+  const std::size_t m = detector_.grid().size();
+  std::vector<double> packed(3 * m * fibres_.size(), 0.0);
+  if (model_) {
+    model_->run(nodal_forces(), true);
+    for (std::size_t f = 0; f < fibres_.size(); ++f)
+      if (owned_[f])
+        for (std::size_t j = 0; j < m; ++j) {
+          const Eigen::Vector3d u = model_->displacement(static_cast<int>(f), detector_.grid()[j]);
+          for (int d = 0; d < 3; ++d) packed[3 * (f * m + j) + d] = u[d];
+        }
+  }
+  sum_over_processes(packed, comm_);
   for (std::size_t f = 0; f < fibres_.size(); ++f)
-    superposition_.fibre_field(static_cast<int>(f), contacts_, force_on_a_, true, detector_.grid(),
-                               grid[f]);
-  std::vector<Contact> found = detector_.detect(grid);
+    for (std::size_t j = 0; j < m; ++j)
+      for (int d = 0; d < 3; ++d) {
+        const double x = packed[3 * (f * m + j) + d];
+        grid_u_[f][j][d] = std::isfinite(x) ? x : 0.0;
+      }
+}
+
+// The candidates of the first outer iteration are those of the fibres under the scene's loads: a
+// mesh of the fibres alone (nodes at supports, slices, loads and the crossings of the undeformed
+// fibres), solved once. Without loads the fibres stay straight.
+void ReferenceSolver::deform_under_scene_loads() {
+  if (scene_.loads.empty()) return;
+  make_grid();
+  setup_system();
+  deform();
+}
+
+// Candidates on the finite-element fibres as last deformed (the shared detection); a contact found
+// again keeps its force, and a pushing contact stays a candidate.
+void ReferenceSolver::detect() {
+  std::vector<Contact> found = detector_.detect(grid_u_);
   carry_over(contacts_, found);
   contacts_ = std::move(found);
+}
+
+// The last finite-element solution at both sides of every contact (mm), from the process that
+// owns each fibre.
+void ReferenceSolver::displacements_at_contacts(std::vector<Eigen::Vector3d>& u_a,
+                                                std::vector<Eigen::Vector3d>& u_b) const {
+  const std::size_t n = contacts_.size();
+  std::vector<double> packed(6 * n, 0.0);
+  for (std::size_t k = 0; model_ && k < n; ++k) {
+    const Contact& c = contacts_[k];
+    if (owned_[c.a]) {
+      const Eigen::Vector3d u = model_->displacement(c.a, c.s_a);
+      for (int d = 0; d < 3; ++d) packed[6 * k + d] = u[d];
+    }
+    if (c.kind != ContactKind::wall && owned_[c.b]) {
+      const Eigen::Vector3d u = model_->displacement(c.b, c.s_b);
+      for (int d = 0; d < 3; ++d) packed[6 * k + 3 + d] = u[d];
+    }
+  }
+  sum_over_processes(packed, comm_);
+  u_a.resize(n);
+  u_b.resize(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    u_a[k] = Eigen::Vector3d(packed[6 * k], packed[6 * k + 1], packed[6 * k + 2]);
+    u_b[k] = Eigen::Vector3d(packed[6 * k + 3], packed[6 * k + 4], packed[6 * k + 5]);
+  }
 }
 
 // Every fibre's contact stations (sorted, each once) and each contact's stations on A and B.
@@ -332,6 +397,7 @@ MeshOptions ReferenceSolver::mesh_options() const {
 }
 
 MeshOptions ReferenceSolver::first_mesh_options() {
+  deform_under_scene_loads();
   detect();
   collect_stations();
   return mesh_options();
@@ -352,7 +418,9 @@ void ReferenceSolver::make_grid() {
     if (owns) write_mesh(scene_, mesh, mesh_file_);
   }
   dealii::TimerOutput::Scope read(timer_, "make_grid: GridIn");
-  if (owns) model_ = std::make_unique<BeamModel>(scene_, mesh_file_, owned_, options_.beam_solver);
+  if (owns)
+    model_ = std::make_unique<BeamModel>(scene_, mesh_file_, owned_, options_.beam_solver,
+                                         options_.degree);
 }
 
 // setup_system: degrees of freedom, supports, the sparsity pattern.
@@ -416,7 +484,7 @@ void ReferenceSolver::assemble_system() {
   for (Eigen::Index k = 0; k < n; ++k) {
     const Contact& c = contacts_[k];
     const bool wall = c.kind == ContactKind::wall;
-    d0_[k] = detector_.overlap_along_normal(
+    d0_[k] = detector_.geometry().overlap_along_normal(
         c, packed(u0_, c.a, station_a_[k]),
         wall ? Eigen::Vector3d::Zero().eval() : packed(u0_, c.b, station_b_[k]));
     sides[c.a].push_back({k, station_a_[k], wall ? 1.0 : -1.0});
@@ -455,22 +523,17 @@ void ReferenceSolver::solve() {
   }
   // An overlap at a point neither fibre can move (both pinned there) has no answer; a contact
   // there that does not overlap is left out of the problem.
-  double scale = 0.0;
-  for (const Fibre& f : fibres_) scale = std::max(scale, std::pow(f.length, 3) / (48.0 * f.EI));
-  std::vector<char> excluded(n, 0);
-  for (Eigen::Index k = 0; k < n; ++k) {
-    if (W_.coeff(k, k) > 1e-12 * scale) continue;
-    excluded[k] = 1;
-    if (d0_[k] > tolerance_) {
-      std::ostringstream out;
-      out.precision(3);
-      out << "overlap " << d0_[k] << " mm between " << detector_.describe(contacts_[k])
-          << " where neither can move (pinned supports): it cannot be resolved";
-      trouble_ = out.str();
-      for (Contact& c : contacts_) c.force = 0.0;
-      return;
-    }
+  std::vector<double> overlap(d0_.data(), d0_.data() + n), compliance(n);
+  for (Eigen::Index k = 0; k < n; ++k) compliance[k] = W_.coeff(k, k);
+  if (auto why = find_unresolvable_overlap(contacts_, overlap, compliance, tolerance_, fibres_,
+                                           scene_.walls)) {
+    trouble_ = *why;
+    for (Contact& c : contacts_) c.force = 0.0;
+    return;
   }
+  const double immovable = immovable_compliance(fibres_);
+  std::vector<char> excluded(n, 0);
+  for (Eigen::Index k = 0; k < n; ++k) excluded[k] = compliance[k] <= immovable ? 1 : 0;
   // Overlaps are decided far below the scene's tolerance, but not below the round-off of the
   // finite-element data (about 1e-9 of the largest overlap under the loads).
   threshold_ =
@@ -502,11 +565,10 @@ bool ReferenceSolver::update_active_set() {
   for (std::size_t k = 0; k < contacts_.size(); ++k)
     was_pushing[contacts_[k].key()] = k < pushing_.size() ? pushing_[k] : 0;
   std::vector<Contact> solved = contacts_;
+  deform();
   detect();
-  superposition_.attach(contacts_);
-  gather_forces();
   std::vector<Eigen::Vector3d> ua, ub;
-  superposition_.contact_displacements(contacts_, force_on_a_, true, ua, ub);
+  displacements_at_contacts(ua, ub);
   bool unchanged = true;
   pushing_.assign(contacts_.size(), 0);
   for (std::size_t k = 0; k < contacts_.size(); ++k) {
@@ -514,7 +576,7 @@ bool ReferenceSolver::update_active_set() {
     auto it = was_pushing.find(key);
     if (it != was_pushing.end()) pushing_[k] = it->second;
     if (known.count(key) == 0 &&
-        detector_.overlap_along_normal(contacts_[k], ua[k], ub[k]) > threshold_)
+        detector_.geometry().overlap_along_normal(contacts_[k], ua[k], ub[k]) > threshold_)
       unchanged = false;
   }
   // Nothing new overlaps: the answer is the one just solved, on the candidates it was solved with.
@@ -526,13 +588,7 @@ bool ReferenceSolver::update_active_set() {
 void ReferenceSolver::output_results(Result& r) {
   dealii::TimerOutput::Scope scope(timer_, "output_results");
   gather_forces();
-  std::vector<NodalForce> forces;
-  for (std::size_t k = 0; k < contacts_.size(); ++k) {
-    const Contact& c = contacts_[k];
-    if (!(c.force > 0.0)) continue;
-    if (owned_[c.a]) forces.push_back({c.a, c.s_a, force_on_a_[k]});
-    if (c.kind != ContactKind::wall && owned_[c.b]) forces.push_back({c.b, c.s_b, -force_on_a_[k]});
-  }
+  const std::vector<NodalForce> forces = nodal_forces();
   const std::size_t samples = sample_s_.size();
   std::vector<double> u(3 * offset_.back(), 0.0), field(3 * samples * fibres_.size(), 0.0);
   if (model_) {
@@ -573,8 +629,8 @@ void ReferenceSolver::output_results(Result& r) {
   for (std::vector<double>* values : {&u, &field})
     for (double& x : *values)
       if (!std::isfinite(x)) x = 0.0, finite = false;
-  if (!finite) r.warnings.push_back("non-finite displacements were replaced by zero");
 
+  FiniteElementFigures& figures = r.finite_elements.emplace();
   std::vector<Eigen::Vector3d> u_a(contacts_.size(), Eigen::Vector3d::Zero());
   std::vector<Eigen::Vector3d> u_b(contacts_.size(), Eigen::Vector3d::Zero());
   r.max_overlap = contacts_.empty() ? 0.0 : -INFINITY;
@@ -582,11 +638,11 @@ void ReferenceSolver::output_results(Result& r) {
     Contact& c = contacts_[k];
     u_a[k] = packed(u, c.a, station_a_[k]);
     if (c.kind != ContactKind::wall) u_b[k] = packed(u, c.b, station_b_[k]);
-    c.overlap = detector_.overlap_along_normal(c, u_a[k], u_b[k]);
+    c.overlap = detector_.geometry().overlap_along_normal(c, u_a[k], u_b[k]);
     r.max_overlap = std::max(r.max_overlap, c.overlap);
     if (c.force > 0.0) r.gap_force_residual = std::max(r.gap_force_residual, -c.overlap);
-    r.complementarity_residual =
-        std::max(r.complementarity_residual, std::fabs(c.force * c.overlap));
+    figures.complementarity_residual =
+        std::max(figures.complementarity_residual, std::fabs(c.force * c.overlap));
   }
   for (std::size_t f = 0; f < fibres_.size(); ++f) {
     FibreResult fr;
@@ -596,15 +652,36 @@ void ReferenceSolver::output_results(Result& r) {
                                    field[3 * (f * samples + j) + 2]);
     r.fibres.push_back(std::move(fr));
   }
-  r.contacts = contact_results(contacts_, fibres_, detector_, force_on_a_, u_a, u_b);
-  r.walls = wall_results(contacts_, fibres_, detector_.wall_specs());
-  // Energies of the same loads by the beam formulas, which the elements reproduce at the nodes.
-  superposition_.attach(contacts_);
-  std::vector<Eigen::Vector3d> ua, ub;
-  superposition_.contact_displacements(contacts_, force_on_a_, true, ua, ub,
-                                       &r.strain_energy_exact);
-  r.strain_energy = superposition_.trapezium_energy(contacts_, force_on_a_, scene_.contact.slices);
-  r.axial_load_dropped = superposition_.axial_load_dropped(contacts_, force_on_a_);
+  r.contacts = contact_results(contacts_, fibres_, scene_.walls, force_on_a_, u_a, u_b);
+  r.walls = wall_results(contacts_, fibres_, scene_.walls);
+  // The energies and the dropped axial load, from this process's elements, summed: Eq. 4.34 by
+  // the trapezium rule on the FE moments at the slice spacing (as the iterative solver), ½ΣP·v
+  // from the FE displacements, and ∫M²/2EI over the elements.
+  std::vector<double> sums(4, 0.0);
+  if (model_) {
+    const int n = scene_.contact.slices;
+    for (std::size_t f = 0; f < fibres_.size(); ++f) {
+      if (!owned_[f]) continue;
+      double sum = 0.0;
+      for (int j = 0; j <= n; ++j) {
+        const double weight = (j == 0 || j == n) ? 0.5 : 1.0;
+        sum +=
+            weight * model_->moment(static_cast<int>(f), static_cast<double>(j) / n).squaredNorm();
+      }
+      sums[0] += sum * (fibres_[f].length / n) / (2.0 * fibres_[f].EI);
+    }
+    sums[1] = model_->load_work();
+    sums[2] = model_->strain_energy();
+    sums[3] = model_->axial_load_dropped();
+  }
+  sum_over_processes(sums, comm_);
+  for (double& x : sums)
+    if (!std::isfinite(x)) x = 0.0, finite = false;
+  r.strain_energy = sums[0];
+  r.strain_energy_exact = sums[1];
+  figures.strain_energy_elements = sums[2];
+  r.axial_load_dropped = sums[3];
+  if (!finite) r.warnings.push_back("non-finite displacements or energies were replaced by zero");
 }
 
 Result ReferenceSolver::run() {
@@ -613,8 +690,9 @@ Result ReferenceSolver::run() {
   r.scene = scene_.name;
   r.solver = "fem";
   r.rule = "active_set";
-  r.status = "max_iterations";
-  r.criterion = "max_iterations";
+  r.status = Status::max_iterations;
+  r.criterion = Criterion::max_iterations;
+  deform_under_scene_loads();
   detect();
   int outer = 0;
   for (outer = 1; outer <= options_.max_outer_iterations; ++outer) {
@@ -623,8 +701,8 @@ Result ReferenceSolver::run() {
     assemble_system();
     solve();
     if (!trouble_.empty()) {
-      r.status = non_finite_ ? "diverged" : "unresolvable";
-      r.criterion = non_finite_ ? "non_finite" : "unresolvable";
+      r.status = non_finite_ ? Status::diverged : Status::unresolvable;
+      r.criterion = non_finite_ ? Criterion::non_finite : Criterion::unresolvable;
       r.message = trouble_;
       break;
     }
@@ -638,12 +716,12 @@ Result ReferenceSolver::run() {
                         " active-set passes so far");
     }
     if (unchanged) {
-      r.status = "converged";
-      r.criterion = "active_set";
+      r.status = Status::converged;
+      r.criterion = Criterion::active_set;
       break;
     }
   }
-  if (r.status == "max_iterations") {
+  if (r.status == Status::max_iterations) {
     r.message = "the candidates still changed after " +
                 std::to_string(options_.max_outer_iterations) + " outer iterations";
     // The last solve used the candidates before the final detection: mesh them again.
@@ -652,8 +730,8 @@ Result ReferenceSolver::run() {
   }
   output_results(r);
   r.iterations = std::min(outer, options_.max_outer_iterations);
-  r.active_set_iterations = active_set_iterations_;
-  r.unknowns = static_cast<long>(
+  r.finite_elements->active_set_iterations = active_set_iterations_;
+  r.finite_elements->unknowns = static_cast<long>(
       dealii::Utilities::MPI::sum(model_ ? model_->unknowns() : std::size_t(0), comm_));
   r.stages = {"gmsh_mesh", "fem_beams", "active_set"};
   if (detector_.point_search()) r.stages.push_back("point_contacts");
@@ -666,7 +744,7 @@ Result ReferenceSolver::run() {
     r.stages.push_back("friction_not_modelled");
     r.warnings.push_back("the reference model is frictionless; contact.friction was ignored");
   }
-  if (r.status == "converged" && r.max_overlap > tolerance_) {
+  if (r.status == Status::converged && r.max_overlap > tolerance_) {
     std::ostringstream out;
     out.precision(3);
     out << "an overlap of " << r.max_overlap << " mm remains, above the scene's tolerance of "
@@ -678,7 +756,8 @@ Result ReferenceSolver::run() {
   r.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   std::ostringstream timing;
   timing.precision(3);
-  timing << "unknowns " << r.unknowns << ", active-set passes " << active_set_iterations_;
+  timing << "unknowns " << r.finite_elements->unknowns << ", active-set passes "
+         << active_set_iterations_;
   if (options_.beam_solver == BeamSolver::cg_amg)
     timing << ", CG iterations " << (model_ ? model_->cg_iterations() : 0) << " (last mesh)";
   timing << "; wall time per phase (s):";
@@ -728,15 +807,15 @@ Result solve_reference(const Scene& scene, const ReferenceOptions& options) {
       line << "refinement K = " << K << ": line and wall force " << line_force(r) << " N";
       options.progress(line.str());
     }
-    if (r.status != "converged") return r;
+    if (r.status != Status::converged) return r;
     if (K > options.refine) {
       const double change = std::fabs(line_force(r) - line_force(previous));
       if (change <= options.refinement_tolerance * line_force(previous)) {
         std::ostringstream out;
         out.precision(3);
-        out << "continuous line contact converged at refinement " << K << " (" << r.unknowns
-            << " unknowns): the line force changed by " << change / line_force(previous)
-            << " from the refinement before; " << r.message;
+        out << "continuous line contact converged at refinement " << K << " ("
+            << r.finite_elements->unknowns << " unknowns): the line force changed by "
+            << change / line_force(previous) << " from the refinement before; " << r.message;
         r.message = out.str();
         return r;
       }

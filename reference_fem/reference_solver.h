@@ -31,6 +31,9 @@ struct ReferenceOptions {
   int max_refine = 8;
   /// MUMPS (exact to round-off) or CG with BoomerAMG (relative residual 1e-14), for large tows.
   BeamSolver beam_solver = BeamSolver::direct;
+  /// Degree of the beam elements: 2 (exact at the nodes and for the moments of uniform loads) or
+  /// 1 (linear, for studies of the finite element itself).
+  unsigned int degree = 2;
   int max_outer_iterations = 30;
   int max_active_set_iterations = 100000;
   /// The beams' solution as a ParaView .vtu file (with several processes, one .vtu per process
@@ -48,9 +51,10 @@ struct ReferenceOptions {
 /// contact solved at once, exactly, as the complementarity problem P ≥ 0, d = d0 − W·P ≤ 0,
 /// P·d = 0 — d0 and W from finite-element solutions, the problem solved by an active-set method
 /// (no penalty parameter in the answer). An outer loop re-detects the contact candidates on the
-/// deformed fibres (with the same detection as the iterative solver), re-meshes, and stops when
-/// the candidates and the active set no longer change. Friction is not modelled (the result says
-/// so in `stages`).
+/// deformed finite-element fibres (with the contact model shared with the iterative solver),
+/// re-meshes, and stops when the candidates and the active set no longer change. Every number it
+/// reports — displacements, energies, the dropped axial load — comes from its own finite elements.
+/// Friction is not modelled (the result says so in `stages`).
 ///
 /// Runs on every process of `options.communicator` (MPI must be initialised): the fibres are
 /// shared out among the processes, each meshes and solves its own, and every process ends with the

@@ -5,7 +5,6 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
-#include <stdexcept>
 
 #include "input_error.h"
 
@@ -19,30 +18,36 @@ void create_parent_folder(const std::string& path) {
     throw InputError(path, "", "cannot create its folder: " + error.message());
 }
 
-void write_file_atomically(const std::string& path, const std::string& contents) {
+void write_atomically(const std::string& path,
+                      const std::function<void(const std::string& temporary)>& write) {
   namespace fs = std::filesystem;
+  create_parent_folder(path);
   const fs::path target(path);
-  if (target.has_parent_path() && !fs::exists(target.parent_path()))
-    fs::create_directories(target.parent_path());
-  const fs::path temporary =
-      target.parent_path() / ("." + target.filename().string() + ".tmp" + std::to_string(getpid()));
-  {
-    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
-    if (!out) throw std::runtime_error("cannot write " + temporary.string());
-    out << contents;
-    out.flush();
-    if (!out) {
-      out.close();
-      std::remove(temporary.c_str());
-      throw std::runtime_error("cannot write " + temporary.string());
-    }
+  const std::string temporary =
+      (target.parent_path() / ("." + target.stem().string() + ".tmp" + std::to_string(getpid()) +
+                               target.extension().string()))
+          .string();
+  try {
+    write(temporary);
+  } catch (...) {
+    std::remove(temporary.c_str());
+    throw;
   }
   std::error_code error;
   fs::rename(temporary, target, error);
   if (error) {
     std::remove(temporary.c_str());
-    throw std::runtime_error("cannot rename to " + path + ": " + error.message());
+    throw InputError(path, "", "cannot write it: " + error.message());
   }
+}
+
+void write_file_atomically(const std::string& path, const std::string& contents) {
+  write_atomically(path, [&](const std::string& temporary) {
+    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
+    if (out) out << contents;
+    if (out) out.flush();
+    if (!out) throw InputError(path, "", "cannot write it");
+  });
 }
 
 }  // namespace fibrecheck

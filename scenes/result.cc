@@ -3,6 +3,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
+#include <utility>
 
 #include "atomic_file.h"
 #include "input_error.h"
@@ -23,13 +24,72 @@ Eigen::Vector3d to_vec(const json& j) {
 
 }  // namespace
 
+namespace {
+constexpr std::pair<Status, const char*> kStatusNames[] = {
+    {Status::converged, "converged"},
+    {Status::max_iterations, "max_iterations"},
+    {Status::diverged, "diverged"},
+    {Status::unresolvable, "unresolvable"}};
+constexpr std::pair<Criterion, const char*> kCriterionNames[] = {
+    {Criterion::contact, "contact"},       {Criterion::energy, "energy"},
+    {Criterion::active_set, "active_set"}, {Criterion::max_iterations, "max_iterations"},
+    {Criterion::growth, "growth"},         {Criterion::oscillation, "oscillation"},
+    {Criterion::non_finite, "non_finite"}, {Criterion::unresolvable, "unresolvable"}};
+
+template <typename Enum, std::size_t N>
+const char* name_of(Enum value, const std::pair<Enum, const char*> (&names)[N]) {
+  for (const auto& [v, name] : names)
+    if (v == value) return name;
+  return "?";
+}
+
+template <typename Enum, std::size_t N>
+Enum parse_name(const std::string& text, const std::pair<Enum, const char*> (&names)[N],
+                const std::string& source, const char* field) {
+  std::string known;
+  for (const auto& [v, name] : names) {
+    if (text == name) return v;
+    known += std::string(known.empty() ? "" : ", ") + name;
+  }
+  throw InputError(source, field, "\"" + text + "\" is none of " + known);
+}
+}  // namespace
+
+const char* to_string(Status status) {
+  return name_of(status, kStatusNames);
+}
+
+const char* to_string(Criterion criterion) {
+  return name_of(criterion, kCriterionNames);
+}
+
+Status parse_status(const std::string& text, const std::string& source) {
+  return parse_name(text, kStatusNames, source, "status");
+}
+
+Criterion parse_criterion(const std::string& text, const std::string& source) {
+  return parse_name(text, kCriterionNames, source, "criterion");
+}
+
+std::string brief_report(const Result& r) {
+  std::ostringstream out;
+  out.precision(4);
+  out << "status " << to_string(r.status) << " (criterion " << to_string(r.criterion) << "), "
+      << r.iterations << " iterations, " << r.wall_time_s << " s\n";
+  out << "strain energy " << r.strain_energy << " N*mm (trapezium), " << r.strain_energy_exact
+      << " N*mm (exact 1/2 sum P*v); max overlap " << r.max_overlap << " mm, gap-force residual "
+      << r.gap_force_residual << " mm; " << r.contacts.size() << " contact pairs";
+  if (!r.message.empty()) out << "\n" << r.message;
+  return out.str();
+}
+
 json result_to_json(const Result& r) {
   json j;
   j["scene"] = r.scene;
   j["solver"] = r.solver;
   j["rule"] = r.rule;
-  j["status"] = r.status;
-  j["criterion"] = r.criterion;
+  j["status"] = to_string(r.status);
+  j["criterion"] = to_string(r.criterion);
   j["message"] = r.message;
   j["iterations"] = r.iterations;
   j["wall_time_s"] = r.wall_time_s;
@@ -40,10 +100,11 @@ json result_to_json(const Result& r) {
   j["c"] = r.c;
   j["c_stable_limit"] = r.c_stable_limit;
   j["axial_load_dropped"] = r.axial_load_dropped;
-  if (r.solver == "fem") {
-    j["complementarity_residual"] = r.complementarity_residual;
-    j["active_set_iterations"] = r.active_set_iterations;
-    j["unknowns"] = r.unknowns;
+  if (r.finite_elements) {
+    j["complementarity_residual"] = r.finite_elements->complementarity_residual;
+    j["active_set_iterations"] = r.finite_elements->active_set_iterations;
+    j["unknowns"] = r.finite_elements->unknowns;
+    j["strain_energy_elements"] = r.finite_elements->strain_energy_elements;
   }
   j["stages"] = r.stages;
   j["warnings"] = r.warnings;
@@ -82,8 +143,8 @@ Result result_from_json(const json& j, const std::string& source) {
     r.scene = j.at("scene").get<std::string>();
     r.solver = j.value("solver", "");
     r.rule = j.value("rule", "");
-    r.status = j.at("status").get<std::string>();
-    r.criterion = j.at("criterion").get<std::string>();
+    r.status = parse_status(j.at("status").get<std::string>(), source);
+    r.criterion = parse_criterion(j.at("criterion").get<std::string>(), source);
     r.message = j.value("message", "");
     r.iterations = j.at("iterations").get<long>();
     r.wall_time_s = j.at("wall_time_s").get<double>();
@@ -94,9 +155,13 @@ Result result_from_json(const json& j, const std::string& source) {
     r.c = j.value("c", 0.0);
     r.c_stable_limit = j.value("c_stable_limit", 0.0);
     r.axial_load_dropped = j.value("axial_load_dropped", 0.0);
-    r.complementarity_residual = j.value("complementarity_residual", 0.0);
-    r.active_set_iterations = j.value("active_set_iterations", 0L);
-    r.unknowns = j.value("unknowns", 0L);
+    if (j.contains("unknowns")) {
+      FiniteElementFigures& figures = r.finite_elements.emplace();
+      figures.complementarity_residual = j.value("complementarity_residual", 0.0);
+      figures.active_set_iterations = j.value("active_set_iterations", 0L);
+      figures.unknowns = j.at("unknowns").get<long>();
+      figures.strain_energy_elements = j.value("strain_energy_elements", 0.0);
+    }
     r.stages = j.at("stages").get<std::vector<std::string>>();
     r.warnings = j.value("warnings", std::vector<std::string>{});
     for (const json& f : j.at("fibres")) {

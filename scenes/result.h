@@ -3,6 +3,7 @@
 #include <Eigen/Core>
 #include <array>
 #include <nlohmann/json_fwd.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -42,28 +43,61 @@ struct HistoryEntry {
   double strain_energy = 0.0;  ///< N·mm
 };
 
+/// How a run ended (DESIGN §5). Only `converged` is an answer; the others come with a message.
+enum class Status {
+  converged,       ///< a stopping criterion of §4.3.6 (or the exact contact solve) was met
+  max_iterations,  ///< the cap on iterations came first
+  diverged,        ///< growth, oscillation or non-finite numbers
+  unresolvable     ///< an overlap where no force can act (both fibres pinned there)
+};
+
+/// What ended the run.
+enum class Criterion {
+  contact,         ///< every contact just touching: |d| < t_d where a force acts, d < t_d elsewhere
+  energy,          ///< the last n_i strain energies within t_U of the current one
+  active_set,      ///< the reference's active set solved exactly and the candidates settled
+  max_iterations,  ///< the iteration cap
+  growth,          ///< the residual grew without bound
+  oscillation,     ///< no progress for a long stretch (c ≥ 2/λmax(W))
+  non_finite,      ///< a non-finite force, displacement or energy
+  unresolvable     ///< see Status::unresolvable
+};
+
+const char* to_string(Status status);
+const char* to_string(Criterion criterion);
+/// The inverse of to_string; throws InputError naming `source` and the field otherwise.
+Status parse_status(const std::string& text, const std::string& source);
+Criterion parse_criterion(const std::string& text, const std::string& source);
+
+/// What only a finite-element solution has: the complementarity problem's largest |P·d| (N·mm),
+/// its active-set steps summed over the outer iterations, the unknowns of the last mesh, and the
+/// strain energy Σ∫M²/(2EI) over the elements (N·mm) from the moment unknowns.
+struct FiniteElementFigures {
+  double complementarity_residual = 0.0;
+  long active_set_iterations = 0;
+  long unknowns = 0;
+  double strain_energy_elements = 0.0;
+};
+
 /// The result of either solver (DESIGN §5); the harness cannot tell the solvers apart.
 struct Result {
   std::string scene;
   std::string solver;  ///< "iterative" | "fem"
   std::string rule;    ///< update rule (iterative) or method (fem)
-  std::string status;  ///< converged | max_iterations | diverged | unresolvable
-  std::string criterion;
+  Status status = Status::max_iterations;
+  Criterion criterion = Criterion::max_iterations;
   std::string message;
   long iterations = 0;
   double wall_time_s = 0.0;
   double strain_energy = 0.0;        ///< N·mm, trapezium rule at the slice spacing (Eq. 4.34)
-  double strain_energy_exact = 0.0;  ///< N·mm, ½ΣP·v
+  double strain_energy_exact = 0.0;  ///< N·mm, ½ΣP·v (with ½∫q·v for uniform loads)
   double max_overlap = 0.0;          ///< mm, largest overlap left (≤ 0 when all separate)
   double gap_force_residual = 0.0;   ///< mm, largest gap carrying a force
   double c = 0.0;                    ///< N/mm, step used (per point contact)
   double c_stable_limit = 0.0;       ///< N/mm, estimate of 2/λmax(W)
   double axial_load_dropped = 0.0;   ///< N, sum of |axial parts| dropped by the beam model
-  /// The reference (solver "fem") only: its complementarity problem's largest |P·d| (N·mm), its
-  /// active-set steps summed over the outer iterations, and its finite-element unknowns.
-  double complementarity_residual = 0.0;
-  long active_set_iterations = 0;
-  long unknowns = 0;
+  /// Present in results of the finite-element reference.
+  std::optional<FiniteElementFigures> finite_elements;
   std::vector<std::string> stages;
   std::vector<std::string> warnings;
   std::vector<FibreResult> fibres;
@@ -71,6 +105,10 @@ struct Result {
   std::vector<WallResult> walls;
   std::vector<HistoryEntry> history;
 };
+
+/// Two lines a person reads: status, criterion, iterations, time, energies, overlap (and the
+/// message, if any, on a third).
+std::string brief_report(const Result& result);
 
 nlohmann::json result_to_json(const Result& result);
 /// Reads a result back; throws InputError naming `source` and the field on a malformed result.

@@ -34,19 +34,19 @@ double min_slice_distance(const Eigen::Vector2d& a0, const Eigen::Vector2d& a1,
 }
 
 Scene generate_tow(const TowOptions& o) {
-  const std::string source = "generate tow";
-  if (o.fibres < 1) throw InputError(source, "--fibres", "must be at least 1");
-  if (o.slices < 1) throw InputError(source, "--slices", "must be at least 1");
+  const std::string source = "tow options";
+  if (o.fibres < 1) throw InputError(source, "fibres", "must be at least 1");
+  if (o.slices < 1) throw InputError(source, "slices", "must be at least 1");
   if (!(o.misalignment_deg >= 0.0 && o.misalignment_deg < 30.0))
-    throw InputError(source, "--misalignment", "must lie in [0, 30) degrees");
+    throw InputError(source, "misalignment_deg", "must lie in [0, 30) degrees");
   if (!(o.length > 0.0 && std::isfinite(o.length)))
-    throw InputError(source, "--length", "must be positive");
+    throw InputError(source, "length", "must be positive");
   if (!(o.radius > 0.0 && std::isfinite(o.radius)))
-    throw InputError(source, "--radius", "must be positive");
+    throw InputError(source, "radius", "must be positive");
   if (!(o.youngs_modulus > 0.0 && std::isfinite(o.youngs_modulus)))
-    throw InputError(source, "--youngs-modulus", "must be positive");
+    throw InputError(source, "youngs_modulus", "must be positive");
   if (!(o.compaction > 0.0 && o.compaction <= 1.0))
-    throw InputError(source, "--compaction", "must lie in (0, 1]");
+    throw InputError(source, "compaction", "must lie in (0, 1]");
 
   const double r = o.radius;
   const double contact = 2.0 * r * (1.0 + o.clearance);
@@ -62,7 +62,7 @@ Scene generate_tow(const TowOptions& o) {
   const double wall_gap = r * (1.0 + o.clearance) / o.compaction;
   const double densest = M_PI * r * r / (0.5 * std::sqrt(3.0) * spacing * spacing);
   if (!(o.volume_fraction > 0.0 && o.volume_fraction < densest))
-    throw InputError(source, "--volume-fraction",
+    throw InputError(source, "volume_fraction",
                      "must lie in (0, " + std::to_string(densest) +
                          "): the supports sit on a hexagonal lattice of spacing " +
                          std::to_string(spacing) + " mm");
@@ -76,7 +76,7 @@ Scene generate_tow(const TowOptions& o) {
     for (int i = 0; wall_gap + (i + 0.5 * (j % 2)) * spacing <= side - wall_gap + 1e-12; ++i)
       sites.emplace_back(wall_gap + (i + 0.5 * (j % 2)) * spacing, wall_gap + j * row);
   if (static_cast<int>(sites.size()) <= o.fibres)
-    throw InputError(source, "--volume-fraction",
+    throw InputError(source, "volume_fraction",
                      "too high for " + std::to_string(o.fibres) + " fibres in a square section");
   std::mt19937_64 rng(o.seed);
   auto pick = [&rng](std::size_t n) {

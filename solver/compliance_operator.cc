@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "beam.h"
+
 namespace fibrecheck {
 
 void ComplianceOperator::apply(const Eigen::VectorXd& x, Eigen::VectorXd& y) const {
@@ -34,6 +36,17 @@ double ComplianceOperator::largest_eigenvalue(int max_iterations, double toleran
     lambda = next;
   }
   return lambda;
+}
+
+double self_compliance(const Contact& c, const std::vector<Fibre>& fibres) {
+  auto along = [&](int f, double s) {
+    const Fibre& fibre = fibres[f];
+    const double axial = c.normal.dot(fibre.t);
+    return point_compliance(s * fibre.length, fibre.length, fibre.EI) * (1.0 - axial * axial);
+  };
+  double w = along(c.a, c.s_a);
+  if (c.kind != ContactKind::wall) w += along(c.b, c.s_b);
+  return w;
 }
 
 }  // namespace fibrecheck

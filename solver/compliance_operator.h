@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "contact.h"
+#include "fibre.h"
 #include "superposition.h"
 
 namespace fibrecheck {
@@ -29,5 +30,10 @@ class ComplianceOperator {
   const Superposition& superposition_;
   const std::vector<Contact>& contacts_;
 };
+
+/// W_kk of the beam formulas: how much overlap a unit force removes at this contact alone (mm/N),
+/// the compliance a²b²/(3EIL) at the contact of each fibre (DESIGN §7) times the part of the normal
+/// across it.
+double self_compliance(const Contact& contact, const std::vector<Fibre>& fibres);
 
 }  // namespace fibrecheck

@@ -8,13 +8,16 @@
 #include <sstream>
 #include <unordered_map>
 
+#include "carry_over.h"
 #include "compliance_operator.h"
+#include "contact_description.h"
 #include "contact_detection.h"
 #include "contact_results.h"
 #include "convergence.h"
 #include "fibre.h"
 #include "friction.h"
 #include "superposition.h"
+#include "unresolvable_overlap.h"
 
 namespace fibrecheck {
 
@@ -61,7 +64,7 @@ class IterativeSolver {
         options_(options),
         fibres_(make_fibres(scene)),
         superposition_(fibres_, scene),
-        margin_(options.margin_factor * smallest_radius()),
+        margin_(candidate_margin(fibres_, options.margin_factor)),
         detector_(fibres_, scene, margin_),
         divergence_(options.overlap_tolerance),
         energy_window_(options.energy_window, options.energy_tolerance) {}
@@ -69,18 +72,6 @@ class IterativeSolver {
   Result run();
 
  private:
-  static std::vector<Fibre> make_fibres(const Scene& scene) {
-    std::vector<Fibre> fibres;
-    for (const FibreSpec& spec : scene.fibres)
-      fibres.push_back(make_fibre(spec, scene.contact.axis, scene.contact.parallel_angle_deg));
-    return fibres;
-  }
-  double smallest_radius() const {
-    double r = INFINITY;
-    for (const Fibre& f : fibres_) r = std::min(r, f.radius);
-    return r;
-  }
-
   void detect_contacts();
   void compute_grid();
   bool moved_beyond_margin();
@@ -126,7 +117,7 @@ void IterativeSolver::compute_grid() {
   grid_u_.resize(fibres_.size());
   const int n = static_cast<int>(fibres_.size());
 #pragma omp parallel for schedule(dynamic, 16) if (n > 64)
-  for (int f = 0; f < n; ++f) superposition_.fibre_field(f, contacts_, force_on_a_, true, s, grid_u_[f]);
+  for (int f = 0; f < n; ++f) superposition_.fibre_field(f, force_on_a_, true, s, grid_u_[f]);
 }
 
 void IterativeSolver::gather_forces() {
@@ -192,23 +183,19 @@ void IterativeSolver::estimate_step() {
 std::optional<std::string> IterativeSolver::find_unresolvable() const {
   // An overlap at a point neither fibre can move (a pinned support of both, or a normal along both
   // axes) can never be removed: say so at once instead of iterating.
-  double scale = 0.0;
-  for (const Fibre& f : fibres_) scale = std::max(scale, std::pow(f.length, 3) / (48.0 * f.EI));
-  for (const Contact& c : contacts_)
-    if (c.overlap > options_.overlap_tolerance && c.compliance <= 1e-12 * scale) {
-      std::ostringstream out;
-      out.precision(3);
-      out << "overlap " << c.overlap << " mm between " << detector_.describe(c)
-          << " where neither can move (pinned supports): it cannot be resolved";
-      return out.str();
-    }
-  return std::nullopt;
+  std::vector<double> overlap(contacts_.size()), compliance(contacts_.size());
+  for (std::size_t k = 0; k < contacts_.size(); ++k) {
+    overlap[k] = contacts_[k].overlap;
+    compliance[k] = self_compliance(contacts_[k], fibres_);
+  }
+  return find_unresolvable_overlap(contacts_, overlap, compliance, options_.overlap_tolerance,
+                                   fibres_, scene_.walls);
 }
 
 void IterativeSolver::evaluate() {
   if (!forces_gathered_) gather_forces();
   superposition_.contact_displacements(contacts_, force_on_a_, true, u_a_, u_b_, &exact_energy_);
-  detector_.measure(contacts_, u_a_, u_b_);
+  detector_.geometry().measure(contacts_, u_a_, u_b_);
   residuals_ = measure_residuals(contacts_);
 }
 
@@ -226,7 +213,7 @@ void IterativeSolver::update_forces() {
 #pragma omp parallel for schedule(static) reduction(+ : uphill) if (n > 4096)
   for (Eigen::Index k = 0; k < n; ++k) {
     const Contact& c = contact[k];
-    const double step = seed ? step_ * c.step_scale : step_;
+    const double step = seed ? step_ * c.weight : step_;
     next[k] = std::max(0.0, c.force + step * c.overlap);
     if (accelerated) uphill += -c.overlap * (next[k] - iterate_[k]);
   }
@@ -274,20 +261,23 @@ Result IterativeSolver::run() {
     const double r =
         std::min(fibres_[c.a].radius, c.kind == ContactKind::wall ? INFINITY : fibres_[c.b].radius);
     if (c.overlap > r) {
-      warnings_.push_back("initial overlap above the radius between " + detector_.describe(c) +
-                          ": the contact side is ambiguous");
+      warnings_.push_back("initial overlap above the radius between " +
+                          describe(c, fibres_, scene_.walls) + ": the contact side is ambiguous");
       break;
     }
   }
   if (auto why = find_unresolvable()) {
     evaluate();
     Result result = assemble(start);
-    result.status = result.criterion = "unresolvable";
+    result.status = Status::unresolvable;
+    result.criterion = Criterion::unresolvable;
     result.message = *why;
     return result;
   }
 
-  std::string status = "max_iterations", criterion = "max_iterations", message;
+  Status status = Status::max_iterations;
+  Criterion criterion = Criterion::max_iterations;
+  std::string message;
   const bool energy_each_iteration = options_.energy_tolerance > 0.0;
   Eigen::VectorXd best_forces;
   double best_residual = INFINITY;
@@ -298,12 +288,12 @@ Result IterativeSolver::run() {
     const double residual = residuals_.total();
     double energy = NAN;
     if (energy_each_iteration || record_history(iteration))
-      energy = superposition_.trapezium_energy(contacts_, force_on_a_, scene_.contact.slices);
+      energy = superposition_.trapezium_energy(force_on_a_, scene_.contact.slices);
     if (record_history(iteration)) history_.push_back({iteration, residuals_.max_overlap, energy});
 
     if (!std::isfinite(residual) || !std::isfinite(exact_energy_)) {
-      status = "diverged";
-      criterion = "non_finite";
+      status = Status::diverged;
+      criterion = Criterion::non_finite;
       message = "non-finite forces or displacements";
       break;
     }
@@ -320,13 +310,13 @@ Result IterativeSolver::run() {
         ++rebuilds_;
         continue;
       }
-      status = "converged";
-      criterion = "contact";
+      status = Status::converged;
+      criterion = Criterion::contact;
       break;
     }
     if (energy_each_iteration && energy_window_.push(energy)) {
-      status = "converged";
-      criterion = "energy";
+      status = Status::converged;
+      criterion = Criterion::energy;
       break;
     }
     const auto verdict = divergence_.observe(iteration, residual);
@@ -337,8 +327,9 @@ Result IterativeSolver::run() {
                                                             : "no progress: the update oscillates")
           << " (c = " << step_ << " N/mm, estimate of 2/lambda_max(W) = " << 2.0 / lambda_max_
           << " N/mm)";
-      status = "diverged";
-      criterion = verdict == DivergenceMonitor::Verdict::growth ? "growth" : "oscillation";
+      status = Status::diverged;
+      criterion = verdict == DivergenceMonitor::Verdict::growth ? Criterion::growth
+                                                                : Criterion::oscillation;
       message = out.str();
       break;
     }
@@ -355,14 +346,15 @@ Result IterativeSolver::run() {
       ++rebuilds_;
       if (auto why = find_unresolvable()) {
         evaluate();
-        status = "unresolvable";
-        criterion = "unresolvable";
+        status = Status::unresolvable;
+        criterion = Criterion::unresolvable;
         message = *why;
         break;
       }
     }
   }
-  if (status == "diverged" && best_forces.size() == static_cast<Eigen::Index>(contacts_.size())) {
+  if (status == Status::diverged &&
+      best_forces.size() == static_cast<Eigen::Index>(contacts_.size())) {
     // Report the best state seen, never a non-finite one.
     for (std::size_t k = 0; k < contacts_.size(); ++k) {
       contacts_[k].force = best_forces[k];
@@ -371,7 +363,7 @@ Result IterativeSolver::run() {
     forces_gathered_ = false;
     evaluate();
   }
-  if (status == "max_iterations") {
+  if (status == Status::max_iterations) {
     iteration = options_.max_iterations;
     std::ostringstream out;
     out.precision(3);
@@ -394,7 +386,7 @@ Result IterativeSolver::assemble(Clock::time_point start) {
   r.solver = "iterative";
   r.rule = to_string(options_.rule);
   gather_forces();
-  r.strain_energy = superposition_.trapezium_energy(contacts_, force_on_a_, scene_.contact.slices);
+  r.strain_energy = superposition_.trapezium_energy(force_on_a_, scene_.contact.slices);
   superposition_.contact_displacements(contacts_, force_on_a_, true, u_a_, u_b_,
                                        &r.strain_energy_exact);
   r.max_overlap = residuals_.max_overlap;
@@ -427,13 +419,12 @@ Result IterativeSolver::assemble(Clock::time_point start) {
   for (std::size_t f = 0; f < fibres_.size(); ++f) {
     FibreResult fr;
     fr.id = fibres_[f].id;
-    superposition_.fibre_field(static_cast<int>(f), contacts_, force_on_a_, true, s,
-                               fr.displacement);
+    superposition_.fibre_field(static_cast<int>(f), force_on_a_, true, s, fr.displacement);
     r.fibres.push_back(std::move(fr));
   }
 
-  r.contacts = contact_results(contacts_, fibres_, detector_, force_on_a_, u_a_, u_b_);
-  r.walls = wall_results(contacts_, fibres_, detector_.wall_specs());
+  r.contacts = contact_results(contacts_, fibres_, scene_.walls, force_on_a_, u_a_, u_b_);
+  r.walls = wall_results(contacts_, fibres_, scene_.walls);
   r.history = history_;
   r.wall_time_s = seconds_since(start);
   return r;
@@ -444,18 +435,6 @@ Result IterativeSolver::assemble(Clock::time_point start) {
 Result solve_iteratively(const Scene& scene, const SolverOptions& options) {
   IterativeSolver solver(scene, options);
   return solver.run();
-}
-
-std::string brief_report(const Result& r) {
-  std::ostringstream out;
-  out.precision(4);
-  out << "status " << r.status << " (criterion " << r.criterion << "), " << r.iterations
-      << " iterations, " << r.wall_time_s << " s\n";
-  out << "strain energy " << r.strain_energy << " N*mm (trapezium), " << r.strain_energy_exact
-      << " N*mm (exact 1/2 sum P*v); max overlap " << r.max_overlap << " mm, gap-force residual "
-      << r.gap_force_residual << " mm; " << r.contacts.size() << " contact pairs";
-  if (!r.message.empty()) out << "\n" << r.message;
-  return out.str();
 }
 
 }  // namespace fibrecheck

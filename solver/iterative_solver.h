@@ -45,7 +45,4 @@ struct SolverOptions {
 /// status `diverged`, `unresolvable` or `max_iterations` with a message.
 Result solve_iteratively(const Scene& scene, const SolverOptions& options);
 
-/// Two lines a person reads: status, criterion, iterations, time, energies, overlap.
-std::string brief_report(const Result& result);
-
 }  // namespace fibrecheck

@@ -8,34 +8,7 @@
 namespace fibrecheck {
 
 /// Lane k of each array is the bending plane of e_{k+1}: one SIMD operation updates both planes.
-/// The arithmetic is that of beam.h term for term, so each plane rounds as the scalar form does.
-struct Superposition::PlaneSums {
-  Eigen::Array2d Sa = Eigen::Array2d::Zero(), Sa3 = Eigen::Array2d::Zero();
-  Eigen::Array2d Sb = Eigen::Array2d::Zero(), Sb3 = Eigen::Array2d::Zero();
-
-  void add_right(const Eigen::Array2d& p, double b) {
-    Sb += p * b;
-    Sb3 += p * b * b * b;
-  }
-  /// Moves a load from the "a ≥ x" sums to the "a < x" sums.
-  void move_left(const Eigen::Array2d& p, double a, double b) {
-    Sb -= p * b;
-    Sb3 -= p * b * b * b;
-    Sa += p * a;
-    Sa3 += p * a * a * a;
-  }
-  /// The same for the moments alone, which need no cubes.
-  void move_left_moment(const Eigen::Array2d& p, double a, double b) {
-    Sb -= p * b;
-    Sa += p * a;
-  }
-  /// 6EIL·v(x) in both planes (Eqs. 4.12–4.13).
-  Eigen::Array2d scaled_deflection(double x, double L) const {
-    return scaled_deflection_from_sums(Sa, Sa3, Sb, Sb3, x, L);
-  }
-  /// M(x) in both planes (Eqs. 4.10–4.11).
-  Eigen::Array2d moment(double x, double L) const { return moment_from_sums(Sa, Sb, x, L); }
-};
+struct Superposition::PlaneSums : RunningSums<Eigen::Array2d> {};
 
 namespace {
 
@@ -181,9 +154,9 @@ void Superposition::contact_displacements(const std::vector<Contact>& contacts,
   if (exact_energy) *exact_energy = energy;
 }
 
-void Superposition::fibre_field(int fibre, const std::vector<Contact>& /*contacts*/,
-                                const std::vector<Eigen::Vector3d>& force_on_a, bool external,
-                                const std::vector<double>& s, std::vector<Eigen::Vector3d>& u,
+void Superposition::fibre_field(int fibre, const std::vector<Eigen::Vector3d>& force_on_a,
+                                bool external, const std::vector<double>& s,
+                                std::vector<Eigen::Vector3d>& u,
                                 std::vector<Eigen::Vector2d>* moment) const {
   const auto& list = slots_[fibre];
   const Fibre& f = fibres_[fibre];
@@ -207,8 +180,7 @@ void Superposition::fibre_field(int fibre, const std::vector<Contact>& /*contact
   }
 }
 
-double Superposition::trapezium_energy(const std::vector<Contact>& /*contacts*/,
-                                       const std::vector<Eigen::Vector3d>& force_on_a,
+double Superposition::trapezium_energy(const std::vector<Eigen::Vector3d>& force_on_a,
                                        int intervals) const {
   std::vector<double> s(intervals + 1);
   for (int j = 0; j <= intervals; ++j) s[j] = static_cast<double>(j) / intervals;

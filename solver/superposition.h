@@ -30,22 +30,17 @@ class Superposition {
 
   /// Displacement (mm) and optionally bending moments (N·mm, both planes) of one fibre at sorted
   /// fractions `s`, under the same loads.
-  void fibre_field(int fibre, const std::vector<Contact>& contacts,
-                   const std::vector<Eigen::Vector3d>& force_on_a, bool external,
+  void fibre_field(int fibre, const std::vector<Eigen::Vector3d>& force_on_a, bool external,
                    const std::vector<double>& s, std::vector<Eigen::Vector3d>& u,
                    std::vector<Eigen::Vector2d>* moment = nullptr) const;
 
   /// Strain energy Σ∫M²/(2EI)dx by the trapezium rule on `intervals` equal intervals per fibre
   /// (Eqs. 4.34–4.35).
-  double trapezium_energy(const std::vector<Contact>& contacts,
-                          const std::vector<Eigen::Vector3d>& force_on_a, int intervals) const;
+  double trapezium_energy(const std::vector<Eigen::Vector3d>& force_on_a, int intervals) const;
 
   /// Sum of the magnitudes of the axial parts the beam model drops, N.
   double axial_load_dropped(const std::vector<Contact>& contacts,
                             const std::vector<Eigen::Vector3d>& force_on_a) const;
-
-  /// The fibres, in the scene's order.
-  const std::vector<Fibre>& fibres() const { return fibres_; }
 
  private:
   /// A load point on a fibre: a contact side (contact ≥ 0, sign +1 for A, −1 for B) or an external
@@ -60,7 +55,7 @@ class Superposition {
     Eigen::Vector2d p;  ///< components along e1, e2, N
   };
 
-  /// The running sums of beam.h for both bending planes at once (superposition.cc).
+  /// The running sums of beam.h for both bending planes at once.
   struct PlaneSums;
 
   /// First pass over a fibre's loads, O(k): each load's components along e1, e2 (N) in slot order

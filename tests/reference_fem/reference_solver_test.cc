@@ -43,7 +43,7 @@ TEST(ReferenceSolver, CrossingForceIsOverlapOverSummedCompliances) {
       ReferenceOptions options;
       options.beam_solver = solver;
       const Result r = solve_reference(s, options);
-      ASSERT_EQ(r.status, "converged") << r.message;
+      ASSERT_EQ(r.status, Status::converged) << r.message;
       EXPECT_EQ(r.solver, "fem");
       EXPECT_NEAR(force_between(r, "A", "B"), overlap / C, 1e-8 * overlap / C)
           << k.sa << ", " << k.sb << (solver == BeamSolver::direct ? " MUMPS" : " CG");
@@ -55,7 +55,7 @@ TEST(ReferenceSolver, CrossingForceIsOverlapOverSummedCompliances) {
 TEST(ReferenceSolver, CompactionTestCaseIsExact) {
   const Scene s = read_scene(std::string(FIBRECHECK_SCENES_DIR) + "/compaction_test.json");
   const Result r = solve_reference(s);
-  ASSERT_EQ(r.status, "converged") << r.message;
+  ASSERT_EQ(r.status, Status::converged) << r.message;
   const double EI = bending_stiffness(0.01, 80000);
   const double v = 2 * 0.01 - 0.0195;
   EXPECT_NEAR(force_between(r, "A1", "S1"), v / compliance(0.5, 1.0, EI),
@@ -75,7 +75,7 @@ TEST(ReferenceSolver, SmallLcpMatchesEnumeration) {
     s.fibres.push_back(fibre("C" + std::to_string(i), {xs[i], -0.5, 2 * r - overlaps[i]},
                              {xs[i], 0.5, 2 * r - overlaps[i]}, r, E * (1 + i)));
   const Result res = solve_reference(s);
-  ASSERT_EQ(res.status, "converged") << res.message;
+  ASSERT_EQ(res.status, Status::converged) << res.message;
   const double EI = bending_stiffness(r, E);
   Eigen::Matrix3d W;
   for (int i = 0; i < 3; ++i)
@@ -99,9 +99,9 @@ TEST(ReferenceSolver, ParallelFibresOnSlicesAgreeWithTheIterativeSolver) {
   const double q = 1e-4;
   const Scene s = testing::parallel(q, 40);
   const Result fem = solve_reference(s);
-  ASSERT_EQ(fem.status, "converged") << fem.message;
+  ASSERT_EQ(fem.status, Status::converged) << fem.message;
   const Result it = solve_iteratively(s, SolverOptions::from_scene(s));
-  ASSERT_EQ(it.status, "converged");
+  ASSERT_EQ(it.status, Status::converged);
   double largest = 0.0, difference = 0.0;
   for (std::size_t f = 0; f < 2; ++f)
     for (std::size_t j = 0; j < fem.fibres[f].displacement.size(); ++j) {
@@ -157,9 +157,9 @@ TEST(ReferenceSolver, CommittedScenesOnSlicesAgreeWithTheConvergedIterativeSolve
     s.solver.overlap_tolerance = 1e-13;
     s.solver.rule = UpdateRule::accelerated;
     const Result it = solve_iteratively(s, SolverOptions::from_scene(s));
-    ASSERT_EQ(it.status, "converged") << name << ": " << it.message;
+    ASSERT_EQ(it.status, Status::converged) << name << ": " << it.message;
     const Result fem = solve_reference(s);
-    ASSERT_EQ(fem.status, "converged") << name << ": " << fem.message;
+    ASSERT_EQ(fem.status, Status::converged) << name << ": " << fem.message;
     const Difference d = compare(fem, it);
     if (std::string(name) == "parallel_fibres") {
       ASSERT_EQ(fem.contacts.size(), 1u);
@@ -176,7 +176,8 @@ TEST(ReferenceSolver, CommittedScenesOnSlicesAgreeWithTheConvergedIterativeSolve
     // The complementarity conditions hold to round-off.
     EXPECT_LT(fem.max_overlap, 1e-10) << name;
     EXPECT_LT(fem.gap_force_residual, 1e-10) << name;
-    EXPECT_GT(fem.active_set_iterations, 0) << name;
+    ASSERT_TRUE(fem.finite_elements.has_value()) << name;
+    EXPECT_GT(fem.finite_elements->active_set_iterations, 0) << name;
   }
 }
 
@@ -194,7 +195,7 @@ TEST(ReferenceSolver, ContinuousLineContactConvergesUnderRefinement) {
   for (int K = 0; K <= 2; ++K) {
     options.refine = K;
     const Result r = solve_reference(testing::parallel(q, 10), options);
-    ASSERT_EQ(r.status, "converged") << r.message;
+    ASSERT_EQ(r.status, Status::converged) << r.message;
     force_error.push_back(std::fabs(force_between(r, "A", "B") - p) / p);
     const auto& u = r.fibres[1].displacement;
     deflection_error.push_back(std::fabs(std::fabs(u[u.size() / 2].z()) - w) / w);
@@ -208,13 +209,13 @@ TEST(ReferenceSolver, ContinuousLineContactConvergesUnderRefinement) {
   // The default mesh (one cell per slice of the scene, here 100) is within 1e-3.
   options.refine = 0;
   const Result r = solve_reference(testing::parallel(q, 100), options);
-  ASSERT_EQ(r.status, "converged") << r.message;
+  ASSERT_EQ(r.status, Status::converged) << r.message;
   EXPECT_LT(std::fabs(force_between(r, "A", "B") - p), 1e-3 * p);
   // Refined until the line force settles to 1e-3: at first order the last change is the error.
   options.refine_until_converged = true;
   options.refinement_tolerance = 1e-3;
   const Result settled = solve_reference(testing::parallel(q, 5), options);
-  ASSERT_EQ(settled.status, "converged") << settled.message;
+  ASSERT_EQ(settled.status, Status::converged) << settled.message;
   EXPECT_LT(std::fabs(force_between(settled, "A", "B") - p), 1.5e-3 * p);
   EXPECT_NE(settled.message.find("converged at refinement"), std::string::npos) << settled.message;
 }
@@ -227,7 +228,7 @@ TEST(ReferenceSolver, LoadedCrossingSharesTheLoadByCompliance) {
   const double EI = bending_stiffness(0.01, 80000);
   const double CA = compliance(0.3, 1.0, EI), CB = compliance(0.6, 1.0, EI);
   const Result r = solve_reference(s);
-  ASSERT_EQ(r.status, "converged") << r.message;
+  ASSERT_EQ(r.status, Status::converged) << r.message;
   EXPECT_NEAR(force_between(r, "A", "B"), P * CB / (CA + CB), 1e-8 * P);
   ASSERT_EQ(r.contacts.size(), 1u);
   EXPECT_NEAR(r.contacts[0].points[0].position, 0.3, 1e-12);
@@ -242,7 +243,7 @@ TEST(ReferenceSolver, FibrePressedOntoAWall) {
   const double EI = bending_stiffness(0.01, 80000), C = compliance(0.5, 1.0, EI);
   const double P = 1e-4, gap = 0.5 * P * C;
   const Result r = solve_reference(testing::pressed_onto_wall(P, gap));
-  ASSERT_EQ(r.status, "converged") << r.message;
+  ASSERT_EQ(r.status, Status::converged) << r.message;
   ASSERT_EQ(r.walls.size(), 1u);
   EXPECT_NEAR(r.walls[0].force, P - gap / C, 1e-8 * P);
 }
@@ -254,7 +255,7 @@ TEST(ReferenceSolver, TwoWallsInOnePlaneShareTheReaction) {
   const double EI = bending_stiffness(0.01, 80000), C = compliance(0.5, 1.0, EI);
   const double P = 1e-4, gap = 0.5 * P * C;
   const Result r = solve_reference(testing::pressed_onto_wall(P, gap, 2));
-  ASSERT_EQ(r.status, "converged") << r.message;
+  ASSERT_EQ(r.status, Status::converged) << r.message;
   ASSERT_EQ(r.walls.size(), 2u);
   EXPECT_NEAR(r.walls[0].force + r.walls[1].force, P - gap / C, 1e-8 * P);
 }
@@ -263,7 +264,7 @@ TEST(ReferenceSolver, TwoWallsInOnePlaneShareTheReaction) {
 // singular system and nothing non-finite in the result.
 TEST(ReferenceSolver, OverlapAtTwoPinnedSupportsIsUnresolvable) {
   const Result r = solve_reference(testing::overlapping_supports());
-  EXPECT_EQ(r.status, "unresolvable");
+  EXPECT_EQ(r.status, Status::unresolvable);
   EXPECT_NE(r.message.find("A and B"), std::string::npos) << r.message;
   EXPECT_TRUE(std::isfinite(r.strain_energy) && std::isfinite(r.max_overlap));
   for (const FibreResult& f : r.fibres)
@@ -277,8 +278,8 @@ TEST(ReferenceSolver, OuterIterationCapGivesMaxIterations) {
   ReferenceOptions options;
   options.max_outer_iterations = 1;
   const Result r = solve_reference(s, options);
-  EXPECT_EQ(r.status, "max_iterations");
-  EXPECT_EQ(r.criterion, "max_iterations");
+  EXPECT_EQ(r.status, Status::max_iterations);
+  EXPECT_EQ(r.criterion, Criterion::max_iterations);
   EXPECT_EQ(r.iterations, 1);
   EXPECT_NE(r.message.find("outer iterations"), std::string::npos) << r.message;
   EXPECT_TRUE(std::isfinite(r.strain_energy) && std::isfinite(r.max_overlap));
@@ -290,7 +291,7 @@ TEST(ReferenceSolver, FrictionIsReportedAsNotModelled) {
   Scene s = testing::crossing(0.5, 0.5, 1e-3);
   s.contact.friction = 0.3;
   const Result r = solve_reference(s);
-  ASSERT_EQ(r.status, "converged");
+  ASSERT_EQ(r.status, Status::converged);
   EXPECT_NE(std::find(r.stages.begin(), r.stages.end(), "friction_not_modelled"), r.stages.end());
   const Scene frictionless = testing::crossing(0.5, 0.5, 1e-3);
   EXPECT_NEAR(force_between(r, "A", "B"), force_between(solve_reference(frictionless), "A", "B"),
@@ -302,7 +303,7 @@ TEST(ReferenceSolver, WritesTheBeamsForParaView) {
   ReferenceOptions options;
   options.vtu = (std::filesystem::temp_directory_path() / "fibrecheck_reference_test.vtu").string();
   const Result r = solve_reference(testing::crossing(0.3, 0.7, 1e-3), options);
-  ASSERT_EQ(r.status, "converged");
+  ASSERT_EQ(r.status, Status::converged);
   std::ifstream in(options.vtu);
   const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   for (const char* field :

@@ -22,7 +22,7 @@ TEST(Result, RoundTripKeepsEveryField) {
   write_result(path, r);
   const Result back = read_result(path);
   EXPECT_EQ(result_to_json(back), result_to_json(r));
-  EXPECT_EQ(back.status, "converged");
+  EXPECT_EQ(back.status, Status::converged);
   EXPECT_EQ(back.fibres.size(), 2u);
   EXPECT_EQ(back.fibres[0].displacement.size(), 7u);
   EXPECT_EQ(back.contacts.at(0).fibres[0], "A");
@@ -42,9 +42,9 @@ TEST(Result, AtomicWriteLeavesNoTemporaryAndReplacesWhole) {
   std::filesystem::remove_all(folder);
   Result r;
   r.scene = "x";
-  r.status = "converged";
+  r.status = Status::converged;
   write_result(folder + "r.json", r);
-  r.status = "diverged";
+  r.status = Status::diverged;
   write_result(folder + "r.json", r);
   int files = 0;
   for (const auto& entry : std::filesystem::directory_iterator(folder)) {
@@ -52,7 +52,7 @@ TEST(Result, AtomicWriteLeavesNoTemporaryAndReplacesWhole) {
     EXPECT_EQ(entry.path().filename(), "r.json");
   }
   EXPECT_EQ(files, 1);
-  EXPECT_EQ(read_result(folder + "r.json").status, "diverged");
+  EXPECT_EQ(read_result(folder + "r.json").status, Status::diverged);
 }
 
 TEST(Result, ReadingSomethingElseIsAnInputError) {

@@ -49,22 +49,39 @@ TEST(Beam, ComplianceAtTheLoadIsA2B2Over3EIL) {
   EXPECT_EQ(point_compliance(0.0, L, EI), 0.0);
 }
 
-TEST(Beam, PrefixSumSuperpositionEqualsLoadByLoadSum) {
+struct Load {
+  double a, P;
+};
+
+// The running sums swept over sorted points, as the superposition sweeps them.
+void sweep(const std::vector<Load>& loads, const std::vector<double>& x, std::vector<double>& v,
+           std::vector<double>& m) {
+  RunningSums<double> sums;
+  for (const Load& l : loads) sums.add_right(l.P, L - l.a);
+  std::size_t moved = 0;
+  for (double at : x) {
+    for (; moved < loads.size() && loads[moved].a < at; ++moved)
+      sums.move_left(loads[moved].P, loads[moved].a, L - loads[moved].a);
+    v.push_back(sums.scaled_deflection(at, L) / (6.0 * EI * L));
+    m.push_back(sums.moment(at, L));
+  }
+}
+
+TEST(Beam, RunningSumsEqualTheLoadByLoadSum) {
   std::mt19937_64 rng(7);
   std::uniform_real_distribution<double> where(0.0, L), force(-1e-4, 1e-4);
   for (int k : {1, 2, 7, 64}) {
-    std::vector<BeamLoad> loads(k);
-    for (BeamLoad& l : loads) l = {where(rng), force(rng)};
+    std::vector<Load> loads(k);
+    for (Load& l : loads) l = {where(rng), force(rng)};
     loads.push_back({0.5, 1e-4});  // a load exactly at an evaluation point
     std::sort(loads.begin(), loads.end(), [](auto& p, auto& q) { return p.a < q.a; });
     std::vector<double> x;
     for (int i = 0; i <= 40; ++i) x.push_back(i / 40.0);
     std::vector<double> v, m;
-    superpose_deflection(loads, x, L, EI, v);
-    superpose_moment(loads, x, L, m);
+    sweep(loads, x, v, m);
     for (std::size_t i = 0; i < x.size(); ++i) {
       double v_ref = 0.0, m_ref = 0.0;
-      for (const BeamLoad& l : loads) {
+      for (const Load& l : loads) {
         v_ref += textbook_deflection(l.P, l.a, x[i]);
         m_ref += point_load_moment(l.P, l.a, x[i], L);
       }
@@ -86,11 +103,11 @@ TEST(Beam, UniformLoadClosedForms) {
     integral += 0.5 * L * weights[i] * uniform_load_deflection(q, 0.5 * L * (1 + nodes[i]), L, EI);
   EXPECT_NEAR(uniform_load_deflection_integral(q, L, EI), integral, 1e-9 * integral);
   // Many equal point loads approach the uniform load.
-  std::vector<BeamLoad> loads;
+  std::vector<Load> loads;
   const int k = 2000;
   for (int i = 0; i < k; ++i) loads.push_back({(i + 0.5) / k, q / k});
-  std::vector<double> v;
-  superpose_deflection(loads, {0.5}, L, EI, v);
+  std::vector<double> v, m;
+  sweep(loads, {0.5}, v, m);
   EXPECT_NEAR(v[0], 5 * q / (384 * EI), 1e-6 * v[0]);
 }
 

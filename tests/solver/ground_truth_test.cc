@@ -39,7 +39,7 @@ TEST(GroundTruth, OnePointLoadOnASkewFibre) {
   s.loads.push_back(load);
   s.output.samples = 11;
   const Result r = solve(s);
-  ASSERT_EQ(r.status, "converged");
+  ASSERT_EQ(r.status, Status::converged);
   const double L = (end - start).norm(), EI = bending_stiffness(0.012, 70000), a = 0.3 * L;
   for (int j = 0; j < 11; ++j) {
     const double x = L * j / 10.0, b = L - a;
@@ -82,7 +82,7 @@ TEST_P(Crossing, ForceIsOverlapOverSummedCompliances) {
   s.solver.rule = rule;
   if (rule == UpdateRule::seed) s.solver.c = 1.0 / C;  // 2/λmax = 2/C here
   const Result r = solve(s);
-  ASSERT_EQ(r.status, "converged") << r.message;
+  ASSERT_EQ(r.status, Status::converged) << r.message;
   ASSERT_EQ(r.contacts.size(), 1u);
   EXPECT_EQ(r.contacts[0].kind, "point");
   EXPECT_NEAR(r.contacts[0].total_force, overlap / C, 1e-4 * overlap / C);
@@ -114,7 +114,7 @@ TEST(GroundTruth, ParallelFibresShareAUniformLoad) {
   const double q = 1e-4;
   const Scene s = testing::parallel(q, 100);
   const Result r = solve(s);
-  ASSERT_EQ(r.status, "converged") << r.message;
+  ASSERT_EQ(r.status, Status::converged) << r.message;
   const double EIa = bending_stiffness(0.01, 80000), EIb = bending_stiffness(0.008, 70000);
   const ContactResult* c = find_contact(r, "A", "B");
   ASSERT_NE(c, nullptr);
@@ -144,7 +144,7 @@ TEST(GroundTruth, StiffFibrePressingOthers) {
   for (UpdateRule rule : {UpdateRule::automatic, UpdateRule::accelerated}) {
     s.solver.rule = rule;
     const Result res = solve(s);
-    ASSERT_EQ(res.status, "converged") << res.message;
+    ASSERT_EQ(res.status, Status::converged) << res.message;
     // W_ij = C_S(y_i, y_j) + δ_ij C_F(L/2): the stiff fibre couples the three contacts.
     const double EIs = bending_stiffness(r, Es), EI = bending_stiffness(r, E);
     Eigen::Matrix3d W;
@@ -172,7 +172,7 @@ TEST(GroundTruth, TrapeziumEnergyConvergesToExactEnergy) {
     Scene s = testing::crossing(0.375, 0.625, 1e-3);  // load points on the grid for n ≥ 8
     s.contact.slices = n;
     const Result r = solve(s);
-    ASSERT_EQ(r.status, "converged");
+    ASSERT_EQ(r.status, Status::converged);
     const double error = std::fabs(r.strain_energy - r.strain_energy_exact) / r.strain_energy_exact;
     EXPECT_LT(error, previous_error / 3.0) << "n = " << n;  // second order: ~4× per doubling
     previous_error = error;
@@ -187,7 +187,7 @@ TEST(GroundTruth, SliceForcesScaleAsOneOverN) {
   double limit_times_n = 0.0, total = 0.0;
   for (int n : {25, 50, 100}) {
     const Result r = solve(testing::parallel(q, n));
-    ASSERT_EQ(r.status, "converged") << "n = " << n;
+    ASSERT_EQ(r.status, Status::converged) << "n = " << n;
     const ContactResult& c = r.contacts.at(0);
     double middle_force = 0.0;
     for (const ContactPoint& p : c.points)
@@ -211,7 +211,7 @@ TEST(GroundTruth, SliceForcesScaleAsOneOverN) {
 TEST(GroundTruth, CompactionTestCase) {
   const Scene s = read_scene(std::string(FIBRECHECK_SCENES_DIR) + "/compaction_test.json");
   const Result r = solve(s);
-  ASSERT_EQ(r.status, "converged") << r.message;
+  ASSERT_EQ(r.status, Status::converged) << r.message;
   const double EI = bending_stiffness(0.01, 80000);
   EXPECT_NEAR(1.0 / compliance(0.5, 1.0, EI), 30.16e-3, 0.01e-3);
   struct Expected {
@@ -243,7 +243,7 @@ TEST(GroundTruth, LoadedCrossingSharesTheLoadByCompliance) {
   const double EI = testing::bending_stiffness(0.01, 80000);
   const double CA = compliance(0.3, 1.0, EI), CB = compliance(0.6, 1.0, EI);
   const Result r = solve(s);
-  ASSERT_EQ(r.status, "converged") << r.message;
+  ASSERT_EQ(r.status, Status::converged) << r.message;
   ASSERT_EQ(r.contacts.size(), 1u);
   EXPECT_NEAR(r.contacts[0].total_force, P * CB / (CA + CB), 1e-8 * P);
   EXPECT_NEAR(r.contacts[0].points[0].position, 0.3, 1e-12);
@@ -257,7 +257,7 @@ TEST(GroundTruth, FibrePressedOntoAWall) {
   Scene s = testing::pressed_onto_wall(P, gap);
   s.solver.overlap_tolerance = 1e-11;
   const Result r = solve(s);
-  ASSERT_EQ(r.status, "converged") << r.message;
+  ASSERT_EQ(r.status, Status::converged) << r.message;
   ASSERT_EQ(r.walls.size(), 1u);
   EXPECT_NEAR(r.walls[0].force, P - gap / C, 1e-6 * P);
   ASSERT_EQ(r.contacts.size(), 1u);
@@ -282,7 +282,7 @@ TEST(GroundTruth, SmallLcpMatchesEnumeration) {
   s.solver.overlap_tolerance = 1e-11;
   s.solver.rule = UpdateRule::accelerated;
   const Result res = solve(s);
-  ASSERT_EQ(res.status, "converged") << res.message;
+  ASSERT_EQ(res.status, Status::converged) << res.message;
   const double EI = bending_stiffness(r, E);
   Eigen::Matrix4d W;
   for (int i = 0; i < 4; ++i)

@@ -29,7 +29,7 @@ void expect_finite(const Result& r) {
 // Two fibres whose pinned supports overlap: no force can separate them there.
 TEST(IterativeSolver, OverlapAtTwoPinnedSupportsIsUnresolvable) {
   const Result r = solve(testing::overlapping_supports());
-  EXPECT_EQ(r.status, "unresolvable");
+  EXPECT_EQ(r.status, Status::unresolvable);
   EXPECT_EQ(r.iterations, 0);
   EXPECT_NE(r.message.find("A and B"), std::string::npos) << r.message;
   EXPECT_NE(r.message.find("s = 0"), std::string::npos) << r.message;
@@ -44,21 +44,21 @@ TEST(IterativeSolver, SeedRuleBeyondTheStabilityLimitIsReportedDiverged) {
   s.solver.rule = UpdateRule::seed;
   s.solver.c = 3.0 * 2.0 / C;
   const Result r = solve(s);
-  EXPECT_EQ(r.status, "diverged");
+  EXPECT_EQ(r.status, Status::diverged);
   EXPECT_NE(r.message.find("lambda_max"), std::string::npos) << r.message;
   EXPECT_LT(r.iterations, s.solver.max_iterations);
   expect_finite(r);
   // Just below the limit the same rule converges.
   s.solver.c = 0.95 * 2.0 / C;
-  EXPECT_EQ(solve(s).status, "converged");
+  EXPECT_EQ(solve(s).status, Status::converged);
 }
 
 TEST(IterativeSolver, IterationCapIsReportedAsMaxIterations) {
   Scene s = testing::parallel(1e-4, 50);
   s.solver.max_iterations = 5;
   const Result r = solve(s);
-  EXPECT_EQ(r.status, "max_iterations");
-  EXPECT_EQ(r.criterion, "max_iterations");
+  EXPECT_EQ(r.status, Status::max_iterations);
+  EXPECT_EQ(r.criterion, Criterion::max_iterations);
   EXPECT_EQ(r.iterations, 5);
   EXPECT_GT(r.max_overlap, s.overlap_tolerance());
   EXPECT_NE(r.message.find("5 iterations"), std::string::npos);
@@ -72,8 +72,8 @@ TEST(IterativeSolver, EnergyCriterionStopsWhenEnergySettles) {
   s.solver.energy_tolerance = 1e-15;
   s.solver.energy_window = 20;
   const Result r = solve(s);
-  EXPECT_EQ(r.status, "converged");
-  EXPECT_EQ(r.criterion, "energy");
+  EXPECT_EQ(r.status, Status::converged);
+  EXPECT_EQ(r.criterion, Criterion::energy);
   EXPECT_TRUE(has_stage(r, "energy_criterion"));
   ASSERT_GE(r.history.size(), 2u);
 }
@@ -109,7 +109,7 @@ TEST(IterativeSolver, FrictionWithFixedNormalsChangesNothing) {
   const Result frictionless = solve(s);
   s.contact.friction = 0.4;
   const Result with_friction = solve(s);
-  ASSERT_EQ(with_friction.status, "converged");
+  ASSERT_EQ(with_friction.status, Status::converged);
   EXPECT_NEAR(with_friction.contacts[0].total_force, frictionless.contacts[0].total_force,
               1e-12 * frictionless.contacts[0].total_force);
 }
@@ -122,7 +122,7 @@ TEST(IterativeSolver, RunsAreDeterministic) {
   Scene s = generate_tow(tow);
   s.solver.rule = UpdateRule::accelerated;
   const Result first = solve(s), second = solve(s);
-  ASSERT_EQ(first.status, "converged");
+  ASSERT_EQ(first.status, Status::converged);
   EXPECT_EQ(first.iterations, second.iterations);
   EXPECT_EQ(first.strain_energy_exact, second.strain_energy_exact);
   ASSERT_EQ(first.contacts.size(), second.contacts.size());
@@ -141,7 +141,7 @@ TEST(IterativeSolver, CompactedTowEndsJustTouching) {
   Scene s = generate_tow(tow);
   s.solver.rule = UpdateRule::accelerated;
   const Result r = solve(s);
-  ASSERT_EQ(r.status, "converged") << r.message;
+  ASSERT_EQ(r.status, Status::converged) << r.message;
   EXPECT_LT(r.max_overlap, s.overlap_tolerance());
   EXPECT_LT(r.gap_force_residual, s.overlap_tolerance());
   EXPECT_GT(r.contacts.size(), 3u);
@@ -151,7 +151,7 @@ TEST(IterativeSolver, CompactedTowEndsJustTouching) {
   s.solver.rule = UpdateRule::automatic;
   s.solver.max_iterations = 400000;
   const Result plain = solve(s);
-  ASSERT_EQ(plain.status, "converged") << plain.message;
+  ASSERT_EQ(plain.status, Status::converged) << plain.message;
   EXPECT_NEAR(plain.strain_energy_exact, r.strain_energy_exact, 1e-3 * r.strain_energy_exact);
 }
 

@@ -201,15 +201,15 @@ TEST_F(Cli, FemRejectsBadInputWithoutWritingAnything) {
   struct Case {
     std::string arguments, says;
   };
-  for (const Case& k : {Case{"fem " + dir_ + "missing.json" + out, "no such file"},
-                        Case{"fem " + write_text("broken.json", "{\"fibres\": [") + out, "broken.json"},
-                        Case{"fem " + scene("two_fibres_crossing") + " --line-contact sideways" + out,
-                             "--line-contact"},
-                        Case{"fem " + scene("two_fibres_crossing") + " --refine -1" + out, "--refine"},
-                        Case{"fem " + scene("two_fibres_crossing") + " --vtk " + dir_ + "b.vtk" + out,
-                             "--vtk"},
-                        Case{"fem " + scene("two_fibres_crossing") + " --refine auto" + out,
-                             "--line-contact continuous"}}) {
+  for (const Case& k :
+       {Case{"fem " + dir_ + "missing.json" + out, "no such file"},
+        Case{"fem " + write_text("broken.json", "{\"fibres\": [") + out, "broken.json"},
+        Case{"fem " + scene("two_fibres_crossing") + " --line-contact sideways" + out,
+             "--line-contact"},
+        Case{"fem " + scene("two_fibres_crossing") + " --refine -1" + out, "--refine"},
+        Case{"fem " + scene("two_fibres_crossing") + " --vtk " + dir_ + "b.vtk" + out, "--vtk"},
+        Case{"fem " + scene("two_fibres_crossing") + " --refine auto" + out,
+             "--line-contact continuous"}}) {
     const Outcome bad = run(k.arguments);
     EXPECT_EQ(bad.code, 2) << k.arguments;
     EXPECT_NE(bad.err.find(k.says), std::string::npos) << k.arguments << "\n" << bad.err;

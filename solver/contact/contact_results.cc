@@ -8,7 +8,7 @@ namespace fibrecheck {
 
 std::vector<ContactResult> contact_results(const std::vector<Contact>& contacts,
                                            const std::vector<Fibre>& fibres,
-                                           const ContactDetector& detector,
+                                           const std::vector<WallSpec>& walls,
                                            const std::vector<Eigen::Vector3d>& force_on_a,
                                            const std::vector<Eigen::Vector3d>& u_a,
                                            const std::vector<Eigen::Vector3d>& u_b) {
@@ -21,8 +21,7 @@ std::vector<ContactResult> contact_results(const std::vector<Contact>& contacts,
     auto it = group.find(key);
     if (it == group.end()) {
       ContactResult cr;
-      cr.fibres = {fibres[c.a].id,
-                   c.kind == ContactKind::wall ? detector.wall_specs()[c.b].id : fibres[c.b].id};
+      cr.fibres = {fibres[c.a].id, c.kind == ContactKind::wall ? walls[c.b].id : fibres[c.b].id};
       cr.kind = to_string(c.kind);
       it = group.emplace(key, results.size()).first;
       results.push_back(cr);

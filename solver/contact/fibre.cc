@@ -1,5 +1,6 @@
 #include "fibre.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace fibrecheck {
@@ -38,6 +39,24 @@ Fibre make_fibre(const FibreSpec& spec, const Eigen::Vector3d& axis, double para
   f.e1 = e1.normalized();
   f.e2 = f.t.cross(f.e1);
   return f;
+}
+
+}  // namespace fibrecheck
+
+namespace fibrecheck {
+
+std::vector<Fibre> make_fibres(const Scene& scene) {
+  std::vector<Fibre> fibres;
+  fibres.reserve(scene.fibres.size());
+  for (const FibreSpec& spec : scene.fibres)
+    fibres.push_back(make_fibre(spec, scene.contact.axis, scene.contact.parallel_angle_deg));
+  return fibres;
+}
+
+double smallest_radius(const std::vector<Fibre>& fibres) {
+  double r = INFINITY;
+  for (const Fibre& f : fibres) r = std::min(r, f.radius);
+  return r;
 }
 
 }  // namespace fibrecheck

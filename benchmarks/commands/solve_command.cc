@@ -19,15 +19,6 @@ namespace fibrecheck {
 
 namespace {
 
-struct SolveArguments {
-  std::vector<std::string> scenes;
-  std::string out, out_dir, vtk, rule;
-  int slices = 0;
-  double c = 0.0;
-  bool quiet = false;
-  bool help_scene = false;
-};
-
 /// Progress on long runs: a line every few seconds (overwritten in place on a terminal).
 std::function<void(const IterationProgress&)> progress_printer(bool terminal) {
   return [terminal](const IterationProgress& p) {
@@ -59,49 +50,39 @@ void print_table(const std::vector<Result>& results, const std::vector<Scene>& s
     std::size_t points = 0;
     for (const ContactResult& c : r.contacts) points += c.points.size();
     std::printf("%-24s %7zu %9zu %-12s %-15s %10ld %9.3f %12.5g %12.3g\n", r.scene.c_str(),
-                scenes[i].fibres.size(), points, r.rule.c_str(), r.status.c_str(), r.iterations,
+                scenes[i].fibres.size(), points, r.rule.c_str(), to_string(r.status), r.iterations,
                 r.wall_time_s, r.strain_energy_exact, r.max_overlap);
   }
 }
+
+}  // namespace
 
 int run_solve(const SolveArguments& args) {
   if (args.help_scene) {
     std::cout << scene_format_help();
     return kExitConverged;
   }
-  if (args.scenes.empty()) {
-    std::cerr << "fibrecheck solve: error: no scene file given (see --help)\n";
-    return kExitBadInput;
-  }
-  if (args.scenes.size() > 1 && !args.out.empty()) {
-    std::cerr << "fibrecheck solve: error: --out: names one result file; use --out-dir for "
-                 "several scenes\n";
-    return kExitBadInput;
-  }
-  if (args.scenes.size() > 1 && !args.vtk.empty()) {
-    std::cerr << "fibrecheck solve: error: --vtk: takes one scene\n";
-    return kExitBadInput;
-  }
+  if (args.scenes.empty()) throw InputError("command line", "", "no scene file given (see --help)");
+  if (args.scenes.size() > 1 && !args.out.empty())
+    throw InputError("command line", "--out",
+                     "names one result file; use --out-dir for several scenes");
+  if (args.scenes.size() > 1 && !args.vtk.empty())
+    throw InputError("command line", "--vtk", "takes one scene");
   // Read and check every scene before solving anything: bad input writes nothing.
   std::vector<Scene> scenes;
   std::vector<SolverOptions> options;
-  try {
-    for (const std::string& path : args.scenes) {
-      Scene scene = read_scene(path);
-      if (args.slices > 0) scene.contact.slices = args.slices;
-      if (!args.rule.empty())
-        scene.solver.rule = parse_update_rule(args.rule, "command line", "--rule");
-      if (args.c > 0.0) scene.solver.c = args.c;
-      validate_scene(scene);
-      SolverOptions o = SolverOptions::from_scene(scene);
-      std::string why;
-      if (!o.is_valid(&why)) throw InputError(path, "solver", why);
-      scenes.push_back(std::move(scene));
-      options.push_back(std::move(o));
-    }
-  } catch (const InputError& e) {
-    std::cerr << "fibrecheck solve: error: " << e.what() << "\n";
-    return kExitBadInput;
+  for (const std::string& path : args.scenes) {
+    Scene scene = read_scene(path);
+    if (args.slices > 0) scene.contact.slices = args.slices;
+    if (!args.rule.empty())
+      scene.solver.rule = parse_update_rule(args.rule, "command line", "--rule");
+    if (args.c > 0.0) scene.solver.c = args.c;
+    validate_scene(scene);
+    SolverOptions o = SolverOptions::from_scene(scene);
+    std::string why;
+    if (!o.is_valid(&why)) throw InputError(path, "solver", why);
+    scenes.push_back(std::move(scene));
+    options.push_back(std::move(o));
   }
 
   const bool terminal = isatty(fileno(stderr));
@@ -131,16 +112,11 @@ int run_solve(const SolveArguments& args) {
       for (const std::string& w : result.warnings) std::cout << "  warning: " << w << "\n";
     }
     const std::string path = result_path_for(args, scene);
-    try {
-      if (!path.empty()) write_result(path, result);
-      if (!args.vtk.empty()) write_vtk(args.vtk, scene, result);
-    } catch (const std::exception& e) {
-      std::cerr << "fibrecheck solve: error: " << e.what() << "\n";
-      return kExitBadInput;
-    }
+    if (!path.empty()) write_result(path, result);
+    if (!args.vtk.empty()) write_vtk(args.vtk, scene, result);
     if (!args.quiet && !path.empty()) std::cout << "  result written to " << path << "\n";
-    if (result.status != "converged") {
-      std::cerr << "fibrecheck solve: " << scene.source << ": " << result.status << ": "
+    if (result.status != Status::converged) {
+      std::cerr << "fibrecheck solve: " << scene.source << ": " << to_string(result.status) << ": "
                 << result.message << "\n";
       code = kExitUnsolved;
     }
@@ -150,24 +126,21 @@ int run_solve(const SolveArguments& args) {
   return code;
 }
 
-}  // namespace
-
-void add_solve_command(CLI::App& app, int& exit_code) {
-  auto args = std::make_shared<SolveArguments>();
+CLI::App* add_solve_command(CLI::App& app, SolveArguments& args) {
   CLI::App* solve = app.add_subcommand("solve", "Solve scenes with the iterative method");
-  solve->add_option("scenes", args->scenes, "Scene files (JSON)");
-  solve->add_option("--out", args->out, "Result file (JSON) for one scene");
-  solve->add_option("--out-dir", args->out_dir, "Folder for SCENE_NAME.result.json files");
-  solve->add_option("--slices", args->slices, "Cross-sections n (overrides contact.slices)")
+  solve->add_option("scenes", args.scenes, "Scene files (JSON)");
+  solve->add_option("--out", args.out, "Result file (JSON) for one scene");
+  solve->add_option("--out-dir", args.out_dir, "Folder for SCENE_NAME.result.json files");
+  solve->add_option("--slices", args.slices, "Cross-sections n (overrides contact.slices)")
       ->check(CLI::Range(1, 1000000));
-  solve->add_option("--rule", args->rule, "Force update rule: seed | auto | accelerated")
+  solve->add_option("--rule", args.rule, "Force update rule: seed | auto | accelerated")
       ->check(CLI::IsMember({"seed", "auto", "accelerated"}));
-  solve->add_option("--c", args->c, "Step c of P' = P + c*d in N/mm (rule seed)")
+  solve->add_option("--c", args.c, "Step c of P' = P + c*d in N/mm (rule seed)")
       ->check(CLI::PositiveNumber);
-  solve->add_option("--vtk", args->vtk, "ParaView file (.vtp) of fibres and contact forces");
-  solve->add_flag("--quiet,-q", args->quiet, "Print nothing but errors");
-  solve->add_flag("--help-scene", args->help_scene, "Print every scene field with its default");
-  solve->callback([args, &exit_code] { exit_code = run_solve(*args); });
+  solve->add_option("--vtk", args.vtk, "ParaView file (.vtp) of fibres and contact forces");
+  solve->add_flag("--quiet,-q", args.quiet, "Print nothing but errors");
+  solve->add_flag("--help-scene", args.help_scene, "Print every scene field with its default");
+  return solve;
 }
 
 }  // namespace fibrecheck

@@ -3,6 +3,7 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 #include <string>
+#include <vector>
 
 #include "scene.h"
 
@@ -30,6 +31,12 @@ double second_moment_of_area(double radius);
 /// Builds the frame: e1/e2 follow the global cross-section axes of the tow axis `axis` (for axis x:
 /// e1 ≈ y, e2 ≈ z), projected orthogonal to the fibre.
 Fibre make_fibre(const FibreSpec& spec, const Eigen::Vector3d& axis, double parallel_angle_deg);
+
+/// Every fibre of a scene, in its order, with the scene's tow axis and parallel angle.
+std::vector<Fibre> make_fibres(const Scene& scene);
+
+/// The smallest radius of the fibres (mm); infinite when there are none.
+double smallest_radius(const std::vector<Fibre>& fibres);
 
 /// Two unit vectors (g1, g2) completing `axis` to a right-handed orthonormal basis; for the x axis
 /// they are y and z.

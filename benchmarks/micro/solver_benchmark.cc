@@ -9,61 +9,78 @@
 
 #include "beam.h"
 #include "closest_points.h"
+#include "fibre.h"
 #include "iterative_solver.h"
 #include "slice_broad_phase.h"
+#include "superposition.h"
 #include "tow_generator.h"
 
 namespace fibrecheck {
 namespace {
 
-constexpr double kLength = 1.0;                  // mm
-constexpr double kBendingStiffness = 6.2832e-4;  // N·mm², r = 0.01 mm, E = 80 GPa
-
-std::vector<BeamLoad> random_loads(int k, std::mt19937_64& rng) {
-  std::uniform_real_distribution<double> position(0.0, kLength), force(-1e-4, 1e-4);
-  std::vector<BeamLoad> loads(k);
-  for (BeamLoad& l : loads) l = {position(rng), force(rng)};
-  std::sort(loads.begin(), loads.end(),
-            [](const BeamLoad& a, const BeamLoad& b) { return a.a < b.a; });
-  return loads;
-}
-
-std::vector<double> stations(int n) {
-  std::vector<double> x(n);
-  for (int i = 0; i < n; ++i) x[i] = kLength * (i + 0.5) / n;
-  return x;
-}
-
-// Deflection at n = k stations under k point loads by the running sums: O(k + n).
-void BM_SuperpositionPrefixSums(benchmark::State& state) {
+// One fibre of length 1 mm (r = 0.01 mm, E = 80 GPa) under k random point loads across it.
+Scene loaded_fibre(int k) {
   std::mt19937_64 rng(1);
+  std::uniform_real_distribution<double> position(0.0, 1.0), force(-1e-4, 1e-4);
+  Scene scene;
+  FibreSpec f;
+  f.id = "F";
+  f.end = {1.0, 0.0, 0.0};
+  f.radius = 0.01;
+  f.youngs_modulus = 80000;
+  scene.fibres.push_back(f);
+  for (int i = 0; i < k; ++i) {
+    LoadSpec load;
+    load.fibre = "F";
+    load.position = position(rng);
+    load.force = {0.0, force(rng), force(rng)};
+    scene.loads.push_back(load);
+  }
+  return scene;
+}
+
+std::vector<double> fractions(int n) {
+  std::vector<double> s(n);
+  for (int i = 0; i < n; ++i) s[i] = (i + 0.5) / n;
+  return s;
+}
+
+// Deflection at n = k points under k point loads by the solver's superposition (the running sums
+// of beam.h, both planes at once): O(k + n).
+void BM_SuperpositionPrefixSums(benchmark::State& state) {
   const int k = static_cast<int>(state.range(0));
-  const auto loads = random_loads(k, rng);
-  const auto x = stations(k);
-  std::vector<double> v;
+  const Scene scene = loaded_fibre(k);
+  const std::vector<Fibre> fibres = make_fibres(scene);
+  const Superposition superposition(fibres, scene);
+  const std::vector<double> s = fractions(k);
+  std::vector<Eigen::Vector3d> u;
   for (auto _ : state) {
-    superpose_deflection(loads, x, kLength, kBendingStiffness, v);
-    benchmark::DoNotOptimize(v.data());
+    superposition.fibre_field(0, {}, true, s, u);
+    benchmark::DoNotOptimize(u.data());
   }
   state.SetComplexityN(k);
 }
 BENCHMARK(BM_SuperpositionPrefixSums)->RangeMultiplier(4)->Range(16, 4096)->Complexity();
 
-// The same by summing Eqs. 4.12–4.13 load by load: O(k·n).
+// The same by summing Eqs. 4.12–4.13 load by load in both planes: O(k·n).
 void BM_SuperpositionNaive(benchmark::State& state) {
-  std::mt19937_64 rng(1);
   const int k = static_cast<int>(state.range(0));
-  const auto loads = random_loads(k, rng);
-  const auto x = stations(k);
-  std::vector<double> v(k);
+  const Scene scene = loaded_fibre(k);
+  const Fibre fibre = make_fibres(scene)[0];
+  const std::vector<double> s = fractions(k);
+  std::vector<Eigen::Vector3d> u(k);
   for (auto _ : state) {
     for (int i = 0; i < k; ++i) {
-      double sum = 0.0;
-      for (const BeamLoad& l : loads)
-        sum += point_load_deflection(l.P, l.a, x[i], kLength, kBendingStiffness);
-      v[i] = sum;
+      Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+      for (const LoadSpec& l : scene.loads) {
+        const double a = l.position * fibre.length, x = s[i] * fibre.length;
+        sum +=
+            point_load_deflection(l.force.dot(fibre.e1), a, x, fibre.length, fibre.EI) * fibre.e1 +
+            point_load_deflection(l.force.dot(fibre.e2), a, x, fibre.length, fibre.EI) * fibre.e2;
+      }
+      u[i] = sum;
     }
-    benchmark::DoNotOptimize(v.data());
+    benchmark::DoNotOptimize(u.data());
   }
   state.SetComplexityN(k);
 }
@@ -159,7 +176,7 @@ void BM_TowSolve(benchmark::State& state) {
     const Result r = solve_iteratively(scene, solver);
     state.counters["iterations"] = static_cast<double>(r.iterations);
     state.counters["ms_per_iteration"] = 1e3 * r.wall_time_s / static_cast<double>(r.iterations);
-    state.counters["converged"] = r.status == "converged" ? 1 : 0;
+    state.counters["converged"] = r.status == Status::converged ? 1 : 0;
   }
 }
 BENCHMARK(BM_TowSolve)->Arg(19)->Arg(100)->Unit(benchmark::kMillisecond)->Iterations(1);

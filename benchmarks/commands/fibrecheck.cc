@@ -1,0 +1,89 @@
+// fibrecheck: cross-checks the iterative fibre-contact method for tow compaction.
+//
+// Sample runs (one per sub-command):
+//   fibrecheck solve scenes/two_fibres_crossing.json --out crossing.result.json --vtk crossing.vtp
+//   fibrecheck solve scenes/small_tow_19.json --rule accelerated --out tow.result.json
+//   fibrecheck solve --help-scene
+//   fibrecheck fem scenes/parallel_fibres.json --line-contact continuous --out parallel.fem.json
+//   mpirun -np 2 fibrecheck fem scenes/small_tow_19.json --out tow.fem.json --vtk tow.vtu
+//   fibrecheck mesh scenes/small_tow_19.json --out small_tow_19.msh --geo small_tow_19.geo
+//   fibrecheck generate tow --fibres 1000 --slices 100 --seed 7 --out tow1000.json
+#include <CLI/CLI.hpp>
+#include <filesystem>
+#include <functional>
+#include <iostream>
+
+#include "exit_codes.h"
+#include "generate_command.h"
+#include "input_error.h"
+#include "solve_command.h"
+#ifdef FIBRECHECK_WITH_FEM
+#include "fem_command.h"
+#include "mesh_command.h"
+#endif
+
+namespace fibrecheck {
+namespace {
+
+/// Runs one sub-command and maps what it throws to the program's exit codes, in this one place:
+/// bad input (scene, option, path) is 2 with one line naming the file, the field and the reason;
+/// anything else is an internal error, 1.
+int run_command(const std::string& name, const std::function<int()>& run) {
+  try {
+    return run();
+  } catch (const InputError& e) {
+    std::cerr << "fibrecheck " << name << ": error: " << e.what() << "\n";
+    return kExitBadInput;
+  } catch (const std::filesystem::filesystem_error& e) {
+    std::cerr << "fibrecheck " << name << ": error: " << e.what() << "\n";
+    return kExitBadInput;
+  } catch (const std::exception& e) {
+    std::cerr << "fibrecheck " << name << ": error: " << e.what() << "\n";
+    return kExitFailure;
+  }
+}
+
+}  // namespace
+}  // namespace fibrecheck
+
+int main(int argc, char** argv) {
+  using namespace fibrecheck;
+  CLI::App app{"fibrecheck: the iterative fibre-contact method of tow compaction, checked"};
+  app.require_subcommand(1);
+  SolveArguments solve;
+  GenerateArguments generate;
+  CLI::App* solve_app = add_solve_command(app, solve);
+  CLI::App* tow_app = add_generate_command(app, generate);
+#ifdef FIBRECHECK_WITH_FEM
+  FemArguments fem;
+  MeshArguments mesh;
+  CLI::App* fem_app = add_fem_command(app, fem);
+  CLI::App* mesh_app = add_mesh_command(app, mesh);
+#else
+  for (const char* name : {"mesh", "fem"})
+    app.add_subcommand(name, "(needs the build with -DFIBRECHECK_WITH_FEM=ON)")->allow_extras();
+#endif
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    app.exit(e);
+    return kExitBadInput;
+  }
+  if (solve_app->parsed()) return run_command("solve", [&] { return run_solve(solve); });
+  if (tow_app->parsed()) return run_command("generate tow", [&] { return run_generate(generate); });
+#ifdef FIBRECHECK_WITH_FEM
+  if (fem_app->parsed()) return run_command("fem", [&] { return run_fem(fem); });
+  if (mesh_app->parsed()) return run_command("mesh", [&] { return run_mesh(mesh); });
+#else
+  const std::string name = app.get_subcommands().front()->get_name();
+  std::cerr << "fibrecheck " << name
+            << ": error: this build has no finite-element stack; configure with "
+               "-DFIBRECHECK_WITH_FEM=ON\n";
+  return kExitBadInput;
+#endif
+  return kExitFailure;
+}

@@ -1,0 +1,200 @@
+#include "contact_detection.h"
+
+#include <algorithm>
+#include <cmath>
+#include <tuple>
+
+#include "closest_points.h"
+#include "slice_broad_phase.h"
+
+namespace fibrecheck {
+
+double candidate_margin(const std::vector<Fibre>& fibres, double factor) {
+  return factor * smallest_radius(fibres);
+}
+
+ContactDetector::ContactDetector(const std::vector<Fibre>& fibres, const Scene& scene,
+                                 double margin)
+    : ContactDetector(fibres, scene, margin, LineQuadrature::slices(scene.contact.slices)) {}
+
+ContactDetector::ContactDetector(const std::vector<Fibre>& fibres, const Scene& scene,
+                                 double margin, LineQuadrature line)
+    : geometry_(fibres, scene.walls, scene.contact.axis), line_(std::move(line)), margin_(margin) {
+  const Eigen::Vector3d& axis = geometry_.tow_axis();
+  std::tie(g1_, g2_) = cross_section_axes(axis);
+  const int m = std::max(scene.contact.slices, 20);
+  grid_.resize(m + 1);
+  for (int j = 0; j <= m; ++j) grid_[j] = static_cast<double>(j) / m;
+  x0_ = INFINITY;
+  x1_ = -INFINITY;
+  int others = 0;
+  for (std::size_t i = 0; i < fibres.size(); ++i) {
+    if (fibres[i].along_tow_axis) {
+      tow_fibres_.push_back(static_cast<int>(i));
+      x0_ = std::min({x0_, fibres[i].start.dot(axis), fibres[i].end.dot(axis)});
+      x1_ = std::max({x1_, fibres[i].start.dot(axis), fibres[i].end.dot(axis)});
+    } else {
+      ++others;
+    }
+  }
+  slicing_ = tow_fibres_.size() >= 2;
+  point_pairs_possible_ = fibres.size() >= 2 && others >= 1;
+  if (!slicing_) x0_ = 0, x1_ = 1;
+}
+
+Eigen::Vector3d ContactDetector::interpolate(
+    const std::vector<std::vector<Eigen::Vector3d>>& grid_u, int fibre, double s) const {
+  const auto& u = grid_u[fibre];
+  const int m = static_cast<int>(grid_.size()) - 1;
+  const int j = std::min(std::max(static_cast<int>(std::floor(s * m)), 0), m - 1);
+  const double w = s * m - j;
+  return (1.0 - w) * u[j] + w * u[j + 1];
+}
+
+std::vector<Contact> ContactDetector::detect(
+    const std::vector<std::vector<Eigen::Vector3d>>& grid_u) const {
+  std::vector<Contact> contacts;
+  if (slicing_) detect_lines(grid_u, contacts);
+  if (point_pairs_possible_) detect_points(grid_u, contacts);
+  if (walls()) detect_walls(grid_u, contacts);
+  for (Contact& c : contacts) {
+    geometry_.place_on_undeformed(c);
+    c.overlap = geometry_.overlap_along_normal(c, interpolate(grid_u, c.a, c.s_a),
+                                               c.kind == ContactKind::wall
+                                                   ? Eigen::Vector3d::Zero().eval()
+                                                   : interpolate(grid_u, c.b, c.s_b));
+  }
+  return contacts;
+}
+
+void ContactDetector::detect_lines(const std::vector<std::vector<Eigen::Vector3d>>& grid_u,
+                                   std::vector<Contact>& out) const {
+  std::vector<Eigen::Vector2d> centres;
+  std::vector<double> radii, params;
+  std::vector<int> owner;
+  std::vector<std::pair<int, int>> pairs;
+  for (int i = 0; i < line_.size(); ++i) {
+    const double x = slice_position(i);
+    centres.clear();
+    radii.clear();
+    params.clear();
+    owner.clear();
+    for (int f : tow_fibres_) {
+      const Fibre& fibre = geometry_.fibres()[f];
+      const Eigen::Vector3d& axis = geometry_.tow_axis();
+      const double along = (fibre.end - fibre.start).dot(axis);
+      const double s = (x - fibre.start.dot(axis)) / along;
+      if (!(s > 1e-12 && s < 1.0 - 1e-12)) continue;
+      const Eigen::Vector3d c = fibre.point(s) + interpolate(grid_u, f, s);
+      centres.emplace_back(c.dot(g1_), c.dot(g2_));
+      radii.push_back(fibre.radius);
+      params.push_back(s);
+      owner.push_back(f);
+    }
+    if (centres.size() > 2)
+      slice_pairs(centres, radii, margin_, pairs);
+    else
+      slice_pairs_all(centres, radii, margin_, pairs);
+    for (const auto& [p, q] : pairs) {
+      const int first = owner[p] < owner[q] ? p : q, second = owner[p] < owner[q] ? q : p;
+      Contact c;
+      c.kind = ContactKind::line;
+      c.a = owner[first];
+      c.b = owner[second];
+      c.slice = i;
+      c.s_a = params[first];
+      c.s_b = params[second];
+      c.weight = line_.weight[i];  // Eq. 4.28: a slice carries 1/n of the line's force
+      out.push_back(c);
+    }
+  }
+}
+
+void ContactDetector::closest_on_polylines(const std::vector<std::vector<Eigen::Vector3d>>& grid_u,
+                                           int a, int b, Contact& c, double& distance) const {
+  distance = INFINITY;
+  const Fibre& fa = geometry_.fibres()[a];
+  const Fibre& fb = geometry_.fibres()[b];
+  const int m = static_cast<int>(grid_.size()) - 1;
+  for (int i = 0; i < m; ++i) {
+    const Eigen::Vector3d a1 = fa.point(grid_[i]) + grid_u[a][i];
+    const Eigen::Vector3d a2 = fa.point(grid_[i + 1]) + grid_u[a][i + 1];
+    for (int j = 0; j < m; ++j) {
+      const Eigen::Vector3d b1 = fb.point(grid_[j]) + grid_u[b][j];
+      const Eigen::Vector3d b2 = fb.point(grid_[j + 1]) + grid_u[b][j + 1];
+      const ClosestPoints cp = segment_closest_points(a1, a2, b1, b2);
+      if (cp.distance < distance) {
+        distance = cp.distance;
+        c.s_a = grid_[i] + cp.mu_a * (grid_[i + 1] - grid_[i]);
+        c.s_b = grid_[j] + cp.mu_b * (grid_[j + 1] - grid_[j]);
+      }
+    }
+  }
+}
+
+void ContactDetector::detect_points(const std::vector<std::vector<Eigen::Vector3d>>& grid_u,
+                                    std::vector<Contact>& out) const {
+  const std::vector<Fibre>& fibres = geometry_.fibres();
+  const int n = static_cast<int>(fibres.size());
+  const int m = static_cast<int>(grid_.size()) - 1;
+  // Broad phase: boxes around each deformed polyline, swept along x.
+  std::vector<Eigen::Vector3d> lo(n), hi(n);
+  for (int f = 0; f < n; ++f) {
+    lo[f] = hi[f] = fibres[f].start + grid_u[f][0];
+    for (int j = 1; j <= m; ++j) {
+      const Eigen::Vector3d p = fibres[f].point(grid_[j]) + grid_u[f][j];
+      lo[f] = lo[f].cwiseMin(p);
+      hi[f] = hi[f].cwiseMax(p);
+    }
+    const double reach = fibres[f].radius + 0.5 * margin_;
+    lo[f].array() -= reach;
+    hi[f].array() += reach;
+  }
+  std::vector<int> order(n);
+  for (int f = 0; f < n; ++f) order[f] = f;
+  std::sort(order.begin(), order.end(), [&](int x, int y) { return lo[x][0] < lo[y][0]; });
+  for (int p = 0; p < n; ++p) {
+    for (int q = p + 1; q < n && lo[order[q]][0] <= hi[order[p]][0]; ++q) {
+      const int a = std::min(order[p], order[q]), b = std::max(order[p], order[q]);
+      if (fibres[a].along_tow_axis && fibres[b].along_tow_axis && slicing_) continue;
+      if ((lo[a].array() > hi[b].array()).any() || (lo[b].array() > hi[a].array()).any()) continue;
+      Contact c;
+      c.kind = ContactKind::point;
+      c.a = a;
+      c.b = b;
+      double distance;
+      closest_on_polylines(grid_u, a, b, c, distance);
+      const double radii = fibres[a].radius + fibres[b].radius;
+      if (distance - radii >= margin_) continue;
+      out.push_back(c);
+    }
+  }
+}
+
+void ContactDetector::detect_walls(const std::vector<std::vector<Eigen::Vector3d>>& grid_u,
+                                   std::vector<Contact>& out) const {
+  const std::vector<Fibre>& fibres = geometry_.fibres();
+  const std::vector<WallSpec>& walls = geometry_.walls();
+  for (std::size_t f = 0; f < fibres.size(); ++f) {
+    for (int j = 0; j < line_.size(); ++j) {
+      const double s = line_.position[j];
+      const Eigen::Vector3d centre = fibres[f].point(s) + interpolate(grid_u, f, s);
+      for (std::size_t w = 0; w < walls.size(); ++w) {
+        const double overlap = fibres[f].radius - walls[w].normal.dot(centre - walls[w].point);
+        if (overlap <= -margin_) continue;
+        Contact c;
+        c.kind = ContactKind::wall;
+        c.a = static_cast<int>(f);
+        c.b = static_cast<int>(w);
+        c.slice = j;
+        c.s_a = s;
+        c.normal = walls[w].normal;
+        c.overlap = overlap;
+        c.weight = line_.weight[j];
+        out.push_back(c);
+      }
+    }
+  }
+}
+
+}  // namespace fibrecheck

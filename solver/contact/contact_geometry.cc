@@ -1,0 +1,61 @@
+#include "contact_geometry.h"
+
+#include "closest_points.h"
+
+namespace fibrecheck {
+
+ContactGeometry::ContactGeometry(const std::vector<Fibre>& fibres,
+                                 const std::vector<WallSpec>& walls,
+                                 const Eigen::Vector3d& tow_axis)
+    : fibres_(fibres), walls_(walls), axis_(tow_axis.normalized()) {
+  g2_ = cross_section_axes(axis_).second;
+}
+
+void ContactGeometry::place_on_undeformed(Contact& c) const {
+  if (c.kind == ContactKind::wall) return;  // the wall's normal, at its station
+  const Fibre& fa = fibres_[c.a];
+  const Fibre& fb = fibres_[c.b];
+  if (c.kind == ContactKind::point) {
+    // Eqs. 4.16–4.24 on the straight chords.
+    const ClosestPoints cp = segment_closest_points(fa.start, fa.end, fb.start, fb.end);
+    c.s_a = cp.mu_a;
+    c.s_b = cp.mu_b;
+  }
+  Eigen::Vector3d difference = fb.point(c.s_b) - fa.point(c.s_a);
+  if (c.kind == ContactKind::line) difference -= difference.dot(axis_) * axis_;
+  const double distance = difference.norm();
+  // Centres closer than half the contact distance give no trustworthy direction (two fibres
+  // passing through each other have no preferred side): a fixed one is taken and reported.
+  c.normal_held = distance < 0.5 * (fa.radius + fb.radius);
+  if (!c.normal_held) {
+    c.normal = difference / distance;
+    return;
+  }
+  Eigen::Vector3d n = c.kind == ContactKind::point ? fa.t.cross(fb.t) : Eigen::Vector3d(g2_);
+  if (n.norm() < 1e-12) n = g2_;
+  c.normal = n.normalized();
+}
+
+double ContactGeometry::overlap_along_normal(const Contact& c, const Eigen::Vector3d& u_a,
+                                             const Eigen::Vector3d& u_b) const {
+  const Eigen::Vector3d ac = fibres_[c.a].point(c.s_a) + u_a;
+  if (c.kind == ContactKind::wall)
+    return fibres_[c.a].radius - c.normal.dot(ac - walls_[c.b].point);
+  Eigen::Vector3d difference = fibres_[c.b].point(c.s_b) + u_b - ac;
+  if (c.kind == ContactKind::line) difference -= difference.dot(axis_) * axis_;
+  return fibres_[c.a].radius + fibres_[c.b].radius - c.normal.dot(difference);
+}
+
+void ContactGeometry::measure(std::vector<Contact>& contacts,
+                              const std::vector<Eigen::Vector3d>& u_a,
+                              const std::vector<Eigen::Vector3d>& u_b) const {
+  const int count = static_cast<int>(contacts.size());
+  Contact* const contact = contacts.data();
+  const Eigen::Vector3d* const side_a = u_a.data();
+  const Eigen::Vector3d* const side_b = u_b.data();
+#pragma omp parallel for schedule(static) if (count > 4096)
+  for (int k = 0; k < count; ++k)
+    contact[k].overlap = overlap_along_normal(contact[k], side_a[k], side_b[k]);
+}
+
+}  // namespace fibrecheck
