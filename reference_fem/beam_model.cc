@@ -184,7 +184,6 @@ struct BeamModel::Implementation {
     constraints.clear();
     for (const auto& cell : dof_handler.active_cell_iterators()) {
       const int f = fibre_of_material.at(cell->material_id());
-      const Fibre& fibre = fibres[f];
       elements[f][std::min(fraction(f, cell->vertex(0)), fraction(f, cell->vertex(1)))] = cell;
       for (unsigned int v = 0; v < 2; ++v) {
         const double s = fraction(f, cell->vertex(v));
@@ -212,11 +211,11 @@ struct BeamModel::Implementation {
     scalar_nodes.assign(fibres.size(), {});
     scalar_constraints.clear();
     for (const auto& cell : scalar_dofs.active_cell_iterators()) {
-      const Fibre& fibre = fibres[fibre_of_material.at(cell->material_id())];
+      const int f = fibre_of_material.at(cell->material_id());
       for (unsigned int v = 0; v < 2; ++v) {
-        const double s = fraction(fibre_of_material.at(cell->material_id()), cell->vertex(v));
+        const double s = fraction(f, cell->vertex(v));
         const types::global_dof_index dof = cell->vertex_dof_index(v, 0);
-        scalar_nodes[fibre_of_material.at(cell->material_id())][s] = dof;
+        scalar_nodes[f][s] = dof;
         if (std::fabs(s) < 1e-9 || std::fabs(s - 1.0) < 1e-9) scalar_constraints.add_line(dof);
       }
     }

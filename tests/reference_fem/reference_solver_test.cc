@@ -312,5 +312,52 @@ TEST(ReferenceSolver, WritesTheBeamsForParaView) {
   std::filesystem::remove(options.vtu);
 }
 
+// Every energy the reference reports is its own elements': with linear elements on a coarse mesh
+// (a uniform load q on one fibre, 10 slices, samples at the slice nodes, so 10 equal elements)
+// the moment is only the interpolant of M(x) = q·x(L − x)/2, exact at the nodes. Then
+//  - ∫M_h²/(2EI) and ½∫q·w_h are Σ_e h(M_i² + M_i·M_j + M_j²)/(6EI), below q²L⁵/(240EI), which
+//    the beam formulas give;
+//  - the trapezium rule of Eq. 4.34 at the slice spacing reads the nodal moments, exact.
+TEST(ReferenceSolver, EnergiesComeFromItsOwnElements) {
+  const double q = 1e-4;
+  const int n = 10;
+  Scene s;
+  s.name = "uniform";
+  s.fibres.push_back(testing::fibre("F", {0, 0, 0}, {1, 0, 0}));
+  LoadSpec load;
+  load.fibre = "F";
+  load.kind = LoadKind::distributed;
+  load.force = {0, 0, -q};
+  s.loads.push_back(load);
+  s.contact.slices = n;
+  s.output.samples = n + 1;
+  const double EI = bending_stiffness(0.01, 80000);
+  auto M = [&](double x) { return q * x * (1 - x) / 2; };
+  double elements = 0.0, trapezium = 0.0;
+  for (int e = 0; e < n; ++e) {
+    const double Mi = M(e / double(n)), Mj = M((e + 1) / double(n));
+    elements += (Mi * Mi + Mi * Mj + Mj * Mj) / (6 * EI * n);
+    trapezium += 0.5 * (Mi * Mi + Mj * Mj) / (2 * EI * n);
+  }
+  const double formula = q * q / (240 * EI);
+  ASSERT_GT(formula - elements, 1e-3 * formula);
+
+  ReferenceOptions linear;
+  linear.degree = 1;
+  const Result r = solve_reference(s, linear);
+  ASSERT_EQ(r.status, Status::converged) << r.message;
+  ASSERT_TRUE(r.finite_elements.has_value());
+  EXPECT_EQ(r.finite_elements->unknowns, 4 * (n + 1));
+  EXPECT_NEAR(r.strain_energy_exact, elements, 1e-10 * formula);
+  EXPECT_NEAR(r.finite_elements->strain_energy_elements, elements, 1e-10 * formula);
+  EXPECT_NEAR(r.strain_energy, trapezium, 1e-10 * formula);
+  // Quadratic elements (the default) hold M exactly: the formula's energy.
+  const Result exact = solve_reference(s);
+  ASSERT_EQ(exact.status, Status::converged) << exact.message;
+  EXPECT_NEAR(exact.strain_energy_exact, formula, 1e-10 * formula);
+  EXPECT_NEAR(exact.finite_elements->strain_energy_elements, formula, 1e-10 * formula);
+  EXPECT_NEAR(exact.strain_energy, trapezium, 1e-10 * formula);
+}
+
 }  // namespace
 }  // namespace fibrecheck

@@ -71,15 +71,26 @@ TEST_F(Cli, SolveWritesResultAndVtkAndExitsZero) {
   EXPECT_TRUE(fs::exists(dir_ + "r.vtp"));
 }
 
+// The parallel fibres at t_d = 1e-8 mm: rule seed with c = 0.02 N/mm takes c/n = 1e-3 N/mm per
+// slice, below the stable 2/λmax(W) ≈ 1.6e-3 N/mm, and converges.
 TEST_F(Cli, CommandLineOverridesRuleSlicesAndC) {
-  const Outcome r = run("solve " + scene("parallel_fibres") +
+  json parallel = json::parse(slurp(scene("parallel_fibres")));
+  parallel["solver"]["overlap_tolerance"] = 1e-8;
+  const Outcome r = run("solve " + write("parallel.json", parallel) +
                         " --rule seed --c 0.02 --slices 20 --out " + dir_ + "r.json -q");
   const json result = json::parse(slurp(dir_ + "r.json"));
   EXPECT_EQ(result["rule"], "seed");
   EXPECT_EQ(result["c"], 0.02);
   EXPECT_EQ(result["contacts"][0]["points"].size(), 20u);
-  EXPECT_TRUE(r.code == 0 || r.code == 3);
+  EXPECT_GT(result["c_stable_limit"].get<double>(), 0.02 / 20);
+  EXPECT_EQ(result["status"], "converged");
+  EXPECT_EQ(r.code, 0) << r.err;
   EXPECT_EQ(r.out, "");  // quiet
+  // The scene's own rule (accelerated) and slices (100) when nothing overrides them.
+  run("solve " + write("plain.json", parallel) + " --out " + dir_ + "plain.json -q");
+  const json plain = json::parse(slurp(dir_ + "plain.json"));
+  EXPECT_EQ(plain["rule"], "accelerated");
+  EXPECT_EQ(plain["contacts"][0]["points"].size(), 100u);
 }
 
 TEST_F(Cli, BadInputExitsTwoWithFileFieldReasonAndWritesNothing) {
