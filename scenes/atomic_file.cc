@@ -24,7 +24,7 @@ void write_atomically(const std::string& path,
   create_parent_folder(path);
   const fs::path target(path);
   const std::string temporary =
-      (target.parent_path() / ("." + target.stem().string() + ".tmp" + std::to_string(getpid()) +
+      (target.parent_path() / ("." + target.stem().string() + "-tmp" + std::to_string(getpid()) +
                                target.extension().string()))
           .string();
   try {

@@ -26,7 +26,6 @@ class EnergyWindow {
   EnergyWindow(int window, double tolerance) : window_(window), tolerance_(tolerance) {}
   /// Adds the current energy; true when the window is full and settled.
   bool push(double energy);
-  void clear() { energies_.clear(); }
 
  private:
   int window_;

@@ -106,7 +106,6 @@ class IterativeSolver {
   double step_ = 0.0;
   double exact_energy_ = 0.0;
   Residuals residuals_;
-  int rebuilds_ = 0;
   int held_normals_ = 0;
   std::vector<std::string> warnings_;
   std::vector<HistoryEntry> history_;
@@ -307,7 +306,6 @@ Result IterativeSolver::run() {
       // Before stopping, make sure no contact outside the candidate list appeared.
       if (moved_beyond_margin()) {
         detect_contacts();
-        ++rebuilds_;
         continue;
       }
       status = Status::converged;
@@ -343,7 +341,6 @@ Result IterativeSolver::run() {
     if (iteration % 10 == 0 && moved_beyond_margin()) {
       detect_contacts();
       divergence_.reset();
-      ++rebuilds_;
       if (auto why = find_unresolvable()) {
         evaluate();
         status = Status::unresolvable;
