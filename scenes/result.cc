@@ -78,7 +78,7 @@ std::string brief_report(const Result& r) {
       << r.iterations << " iterations, " << r.wall_time_s << " s\n";
   out << "strain energy " << r.strain_energy << " N*mm (trapezium), " << r.strain_energy_exact
       << " N*mm (exact 1/2 sum P*v); max overlap " << r.max_overlap << " mm, gap-force residual "
-      << r.gap_force_residual << " mm; " << r.contacts.size() << " contact pairs";
+      << r.gap_force_residual + 0.0 /* −0 printed as 0 */ << " mm; " << r.contacts.size() << " contact pairs";
   if (!r.message.empty()) out << "\n" << r.message;
   return out.str();
 }
