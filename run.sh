@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # fibrecheck on a fresh Debian machine:
-#   ./run.sh        install what is missing, build into build/, solve the default scenes, summarise
+#   ./run.sh        install what is missing, build into build/, run the default suite and the report
 #   ./run.sh test   the same set-up, then the test suite (ctest)
 set -euo pipefail
 cd "$(dirname "$0")"
@@ -41,22 +41,45 @@ if [ "$mode" = test ]; then
   exec ctest --output-on-failure -j "$jobs"
 fi
 
-# The main job: every scene through the iterative solver (with a summary table), then through the
-# finite-element reference.
-mkdir -p build/results
+# The main job: every scene through the iterative solver (a summary table), then the default suite
+# of the harness — compare on every committed scene, the slice study, the tolerance study and the
+# stability study — and the report. Studies keep their points: an interrupted run resumes.
+out=build/main
+mkdir -p "$out" build/results
+step() { echo; echo "== $*"; }
 status=0
-./build/fibrecheck solve scenes/*.json --out-dir build/results || status=$?
-if [ "$status" -ne 0 ] && [ "$status" -ne 3 ]; then exit "$status"; fi
-if ./build/fibrecheck fem --help >/dev/null 2>&1; then
-  for scene in scenes/*.json; do
-    name=$(basename "$scene" .json)
-    echo
-    fem_status=0
-    ./build/fibrecheck fem "$scene" --out "build/results/$name.fem.json" 2>/dev/null \
-      | grep -v '^[|+]' | grep -v '^$' || fem_status=$?
-    if [ "$fem_status" -ne 0 ] && [ "$fem_status" -ne 3 ]; then exit "$fem_status"; fi
-  done
+step "iterative solver on every committed scene"
+./build/fibrecheck solve scenes/*.json --out-dir build/results -q || status=$?
+./build/fibrecheck solve scenes/*.json --out-dir build/results | sed -n '/^scene  /,$p' || true
+if ! ./build/fibrecheck fem --help >/dev/null 2>&1; then
+  echo "This build has no finite-element stack: the comparison, the studies and the report need it."
+  exit "$status"
 fi
+step "compare: both solvers on every committed scene"
+./build/fibrecheck compare scenes/*.json --out "$out/compare" -q
+./build/fibrecheck generate tow --fibres 100 --slices 100 --seed 3 --out "$out/scenes/tow_100.json" >/dev/null
+# The studies measure against the same ground truths as the comparison: computed once.
+for study in slices tolerance; do
+  mkdir -p "$out/study/$study"
+  for scene in parallel_fibres small_tow_19; do
+    truth="$out/compare/$scene/reference_continuous.result.json"
+    [ -f "$truth" ] && cp -n "$truth" "$out/study/$study/$scene.truth.result.json"
+  done
+done
+step "slice study: parallel fibres"
+./build/fibrecheck study slices scenes/parallel_fibres.json --slices 2,4,8,16,32,64,128 \
+  --out "$out/study/slices"
+step "tolerance study: small_tow_19 against the continuous reference"
+./build/fibrecheck study tolerance scenes/small_tow_19.json --refinements 0,1,2 \
+  --out "$out/study/tolerance"
+step "tolerance study: a generated 100-fibre tow against the reference on its slices"
+./build/fibrecheck study tolerance "$out/scenes/tow_100.json" --against-slices --tolerances 1e-3,1e-4,1e-5,1e-6 \
+  --out "$out/study/tolerance_tow"
+step "stability study: two crossing fibres and the parallel fibres"
+./build/fibrecheck study stability scenes/two_fibres_crossing.json scenes/parallel_fibres.json \
+  --max-iterations 50000 --out "$out/study/stability" -q
+step "report"
+./build/fibrecheck report "$out/compare" "$out/study" --out "$out/report"
 echo
-echo "Results (JSON, schema in README.md) are in build/results/."
-exit "$status"
+echo "The report: $out/report/report.md (LaTeX: $out/report/report.tex). Results of the scenes: build/results/."
+exit 0

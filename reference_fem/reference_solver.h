@@ -23,9 +23,10 @@ struct ReferenceOptions {
   /// Refinements: elements (and in continuous mode the Gauss cells) are 2^refine times smaller.
   int refine = 0;
   /// Continuous mode: refine once more (from `refine`) until the summed line and wall contact
-  /// force changes by less than `refinement_tolerance` (relative) from one refinement to the
-  /// next, at most up to `max_refine`. The line force converges at first order, so the last
-  /// change estimates its remaining error.
+  /// force, extrapolated (Richardson, with the order observed on the last three refinements), is
+  /// known to `refinement_tolerance` (relative; two successive extrapolations agree), at most up
+  /// to `max_refine`. Line and wall pairs then carry their extrapolated force, and the result its
+  /// order and error estimate.
   bool refine_until_converged = false;
   double refinement_tolerance = 1e-4;
   int max_refine = 8;
@@ -60,6 +61,11 @@ struct ReferenceOptions {
 /// shared out among the processes, each meshes and solves its own, and every process ends with the
 /// same result.
 Result solve_reference(const Scene& scene, const ReferenceOptions& options = {});
+
+/// The finest refinement K whose continuous line contact, 2·n·2^K Gauss points along a line for the
+/// scene's n slices, stays within `points` (the influence matrices are dense per fibre: memory and
+/// time grow with its square).
+int finest_refinement(const Scene& scene, long points = 2048);
 
 /// The mesh options of the reference's first outer iteration (what `fibrecheck mesh` writes): nodes
 /// at the contact candidates of the fibres under the scene's loads, refined there, and at the

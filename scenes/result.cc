@@ -78,7 +78,8 @@ std::string brief_report(const Result& r) {
       << r.iterations << " iterations, " << r.wall_time_s << " s\n";
   out << "strain energy " << r.strain_energy << " N*mm (trapezium), " << r.strain_energy_exact
       << " N*mm (exact 1/2 sum P*v); max overlap " << r.max_overlap << " mm, gap-force residual "
-      << r.gap_force_residual + 0.0 /* −0 printed as 0 */ << " mm; " << r.contacts.size() << " contact pairs";
+      << r.gap_force_residual + 0.0 /* −0 printed as 0 */ << " mm; " << r.contacts.size()
+      << " contact pairs";
   if (!r.message.empty()) out << "\n" << r.message;
   return out.str();
 }
@@ -105,6 +106,11 @@ json result_to_json(const Result& r) {
     j["active_set_iterations"] = r.finite_elements->active_set_iterations;
     j["unknowns"] = r.finite_elements->unknowns;
     j["strain_energy_elements"] = r.finite_elements->strain_energy_elements;
+    if (r.finite_elements->line_force_error_estimate >= 0.0) {
+      j["refinement"] = r.finite_elements->refinement;
+      j["line_force_order"] = r.finite_elements->line_force_order;
+      j["line_force_error_estimate"] = r.finite_elements->line_force_error_estimate;
+    }
   }
   j["stages"] = r.stages;
   j["warnings"] = r.warnings;
@@ -120,10 +126,12 @@ json result_to_json(const Result& r) {
     for (const ContactPoint& p : c.points)
       points.push_back(
           {{"position", p.position}, {"point", vec(p.point)}, {"force", vec(p.force)}});
-    j["contacts"].push_back({{"fibres", {c.fibres[0], c.fibres[1]}},
-                             {"kind", c.kind},
-                             {"total_force", c.total_force},
-                             {"points", points}});
+    json pair = {{"fibres", {c.fibres[0], c.fibres[1]}},
+                 {"kind", c.kind},
+                 {"total_force", c.total_force},
+                 {"points", points}};
+    if (c.extrapolated_force) pair["extrapolated_force"] = *c.extrapolated_force;
+    j["contacts"].push_back(std::move(pair));
   }
   j["walls"] = json::array();
   for (const WallResult& w : r.walls)
@@ -161,6 +169,9 @@ Result result_from_json(const json& j, const std::string& source) {
       figures.active_set_iterations = j.value("active_set_iterations", 0L);
       figures.unknowns = j.at("unknowns").get<long>();
       figures.strain_energy_elements = j.value("strain_energy_elements", 0.0);
+      figures.refinement = j.value("refinement", 0);
+      figures.line_force_order = j.value("line_force_order", 0.0);
+      figures.line_force_error_estimate = j.value("line_force_error_estimate", -1.0);
     }
     r.stages = j.at("stages").get<std::vector<std::string>>();
     r.warnings = j.value("warnings", std::vector<std::string>{});
@@ -176,6 +187,8 @@ Result result_from_json(const json& j, const std::string& source) {
                    c.at("fibres").at(1).get<std::string>()};
       cr.kind = c.at("kind").get<std::string>();
       cr.total_force = c.at("total_force").get<double>();
+      if (c.contains("extrapolated_force"))
+        cr.extrapolated_force = c.at("extrapolated_force").get<double>();
       for (const json& p : c.at("points")) {
         ContactPoint cp;
         cp.position = p.at("position").get<double>();

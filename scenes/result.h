@@ -22,6 +22,9 @@ struct ContactResult {
   std::string kind;                   ///< "point" | "line" | "wall"
   double total_force = 0.0;           ///< N, magnitude of the resultant
   std::vector<ContactPoint> points;
+  /// The reference's continuous line contact only (line and wall pairs): `total_force`
+  /// extrapolated to infinitely many line points from its refinements (N).
+  std::optional<double> extrapolated_force;
 };
 
 struct FibreResult {
@@ -70,13 +73,20 @@ Status parse_status(const std::string& text, const std::string& source);
 Criterion parse_criterion(const std::string& text, const std::string& source);
 
 /// What only a finite-element solution has: the complementarity problem's largest |P·d| (N·mm),
-/// its active-set steps summed over the outer iterations, the unknowns of the last mesh, and the
-/// strain energy Σ∫M²/(2EI) over the elements (N·mm) from the moment unknowns.
+/// its active-set steps summed over the outer iterations, the unknowns of the last mesh, the
+/// strain energy Σ∫M²/(2EI) over the elements (N·mm) from the moment unknowns, and how its
+/// continuous line contact was refined.
 struct FiniteElementFigures {
   double complementarity_residual = 0.0;
   long active_set_iterations = 0;
   long unknowns = 0;
   double strain_energy_elements = 0.0;
+  /// Continuous line contact refined until extrapolated: the refinement K it ended at, the
+  /// observed order of the line force's convergence, and the estimated relative error of the
+  /// extrapolated line force (0, 0, −1 when not extrapolated).
+  int refinement = 0;
+  double line_force_order = 0.0;
+  double line_force_error_estimate = -1.0;
 };
 
 /// The result of either solver (DESIGN §5); the harness cannot tell the solvers apart.

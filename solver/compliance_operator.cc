@@ -11,13 +11,15 @@ void ComplianceOperator::apply(const Eigen::VectorXd& x, Eigen::VectorXd& y) con
   std::vector<Eigen::Vector3d> force_on_a(n), u_a, u_b;
   for (std::size_t k = 0; k < n; ++k) {
     const Contact& c = contacts_[k];
-    force_on_a[k] = (c.kind == ContactKind::wall ? x[k] : -x[k]) * c.normal;
+    const double xk = weighted_ ? std::sqrt(c.weight) * x[k] : x[k];
+    force_on_a[k] = (c.kind == ContactKind::wall ? xk : -xk) * c.normal;
   }
   superposition_.contact_displacements(contacts_, force_on_a, false, u_a, u_b);
   y.resize(n);
   for (std::size_t k = 0; k < n; ++k) {
     const Contact& c = contacts_[k];
     y[k] = c.kind == ContactKind::wall ? c.normal.dot(u_a[k]) : c.normal.dot(u_b[k] - u_a[k]);
+    if (weighted_) y[k] *= std::sqrt(c.weight);
   }
 }
 

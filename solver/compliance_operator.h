@@ -15,10 +15,14 @@ namespace fibrecheck {
 /// matrix-free through the beam superposition, O(k + n) per fibre.
 class ComplianceOperator {
  public:
-  ComplianceOperator(const Superposition& superposition, const std::vector<Contact>& contacts)
-      : superposition_(superposition), contacts_(contacts) {}
+  /// With `weighted`, the operator is D½·W·D½, D the contacts' weights (1/n per slice): the one
+  /// the seed's rule iterates on, whose step is c·D (Eq. 4.28), so that it is stable for
+  /// c < 2/λmax(D½·W·D½).
+  ComplianceOperator(const Superposition& superposition, const std::vector<Contact>& contacts,
+                     bool weighted = false)
+      : superposition_(superposition), contacts_(contacts), weighted_(weighted) {}
 
-  /// y = W·x.
+  /// y = W·x (or D½·W·D½·x).
   void apply(const Eigen::VectorXd& x, Eigen::VectorXd& y) const;
 
   /// λmax(W) by power iteration from the all-ones vector (W is symmetric positive semi-definite
@@ -29,6 +33,7 @@ class ComplianceOperator {
  private:
   const Superposition& superposition_;
   const std::vector<Contact>& contacts_;
+  bool weighted_;
 };
 
 /// W_kk of the beam formulas: how much overlap a unit force removes at this contact alone (mm/N),

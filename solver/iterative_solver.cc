@@ -172,8 +172,11 @@ bool IterativeSolver::moved_beyond_margin() {
 }
 
 void IterativeSolver::estimate_step() {
-  lambda_max_ = ComplianceOperator(superposition_, contacts_).largest_eigenvalue();
-  if (options_.rule == UpdateRule::seed)
+  // The seed's rule steps by c·D (c/n per slice, Eq. 4.28): its stability limit is that of
+  // D½·W·D½, in the units of the scene's c. The other rules step uniformly.
+  const bool seed = options_.rule == UpdateRule::seed;
+  lambda_max_ = ComplianceOperator(superposition_, contacts_, seed).largest_eigenvalue();
+  if (seed)
     step_ = *options_.c;
   else
     step_ = lambda_max_ > 0.0 ? 1.0 / lambda_max_ : 0.0;

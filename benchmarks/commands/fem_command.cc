@@ -36,9 +36,7 @@ ReferenceOptions reference_options(const FemArguments& args, const Scene& scene)
     throw InputError("command line", "--refine",
                      "continuous line contact at 2 × contact.slices × 2^K points: that must "
                      "stay below 2^20");
-  while (options.max_refine > 0 &&
-         (2LL * scene.contact.slices << options.max_refine) >= (1LL << 20))
-    --options.max_refine;
+  options.max_refine = std::max(options.refine, finest_refinement(scene));
   options.beam_solver = args.beam_solver == "cg_amg" ? BeamSolver::cg_amg : BeamSolver::direct;
   options.degree = args.degree;
   if (ends_with(args.vtk, ".vtu")) options.vtu = args.vtk;

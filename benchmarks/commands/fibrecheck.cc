@@ -8,15 +8,24 @@
 //   mpirun -np 2 fibrecheck fem scenes/small_tow_19.json --out tow.fem.json --vtk tow.vtu
 //   fibrecheck mesh scenes/small_tow_19.json --out small_tow_19.msh --geo small_tow_19.geo
 //   fibrecheck generate tow --fibres 1000 --slices 100 --seed 7 --out tow1000.json
+//   fibrecheck compare scenes/*.json --out build/compare
+//   fibrecheck compare --run my.result.json --truth reference.result.json
+//   fibrecheck study slices scenes/parallel_fibres.json --slices 2,4,8,16,32 --out
+//   build/study/slices fibrecheck study tolerance scenes/small_tow_19.json --out
+//   build/study/tolerance fibrecheck study stability scenes/two_fibres_crossing.json --out
+//   build/study/stability fibrecheck report build/compare build/study --out build/report
 #include <CLI/CLI.hpp>
 #include <filesystem>
 #include <functional>
 #include <iostream>
 
+#include "compare_command.h"
 #include "exit_codes.h"
 #include "generate_command.h"
 #include "input_error.h"
+#include "report_command.h"
 #include "solve_command.h"
+#include "study_command.h"
 #ifdef FIBRECHECK_WITH_FEM
 #include "fem_command.h"
 #include "mesh_command.h"
@@ -54,6 +63,12 @@ int main(int argc, char** argv) {
   GenerateArguments generate;
   CLI::App* solve_app = add_solve_command(app, solve);
   CLI::App* tow_app = add_generate_command(app, generate);
+  CompareArguments compare;
+  StudyArguments study;
+  ReportArguments report;
+  CLI::App* compare_app = add_compare_command(app, compare);
+  CLI::App* study_app = add_study_command(app, study);
+  CLI::App* report_app = add_report_command(app, report);
 #ifdef FIBRECHECK_WITH_FEM
   FemArguments fem;
   MeshArguments mesh;
@@ -75,6 +90,10 @@ int main(int argc, char** argv) {
   }
   if (solve_app->parsed()) return run_command("solve", [&] { return run_solve(solve); });
   if (tow_app->parsed()) return run_command("generate tow", [&] { return run_generate(generate); });
+  if (compare_app->parsed()) return run_command("compare", [&] { return run_compare(compare); });
+  if (study_app->parsed())
+    return run_command("study " + study.study, [&] { return run_study(study); });
+  if (report_app->parsed()) return run_command("report", [&] { return run_report(report); });
 #ifdef FIBRECHECK_WITH_FEM
   if (fem_app->parsed()) return run_command("fem", [&] { return run_fem(fem); });
   if (mesh_app->parsed()) return run_command("mesh", [&] { return run_mesh(mesh); });

@@ -211,13 +211,21 @@ TEST(ReferenceSolver, ContinuousLineContactConvergesUnderRefinement) {
   const Result r = solve_reference(testing::parallel(q, 100), options);
   ASSERT_EQ(r.status, Status::converged) << r.message;
   EXPECT_LT(std::fabs(force_between(r, "A", "B") - p), 1e-3 * p);
-  // Refined until the line force settles to 1e-3: at first order the last change is the error.
+  // Refined until the extrapolated line force settles to 1e-4: from 5 slices (coarse enough to be
+  // in the asymptotic range at every refinement) the extrapolation meets the closed form to 1e-4
+  // and observes the first order.
   options.refine_until_converged = true;
-  options.refinement_tolerance = 1e-3;
+  options.refinement_tolerance = 1e-4;
   const Result settled = solve_reference(testing::parallel(q, 5), options);
   ASSERT_EQ(settled.status, Status::converged) << settled.message;
-  EXPECT_LT(std::fabs(force_between(settled, "A", "B") - p), 1.5e-3 * p);
-  EXPECT_NE(settled.message.find("converged at refinement"), std::string::npos) << settled.message;
+  ASSERT_EQ(settled.contacts.size(), 1u);
+  ASSERT_TRUE(settled.contacts[0].extrapolated_force.has_value());
+  EXPECT_LT(std::fabs(*settled.contacts[0].extrapolated_force - p), 1e-4 * p);
+  EXPECT_GT(std::fabs(settled.contacts[0].total_force - p), 1e-4 * p);  // the last level is not
+  EXPECT_NEAR(settled.finite_elements->line_force_order, 1.0, 0.05);
+  EXPECT_LE(settled.finite_elements->line_force_error_estimate, 1e-4);
+  EXPECT_NE(settled.message.find("extrapolated at refinement"), std::string::npos)
+      << settled.message;
 }
 
 // A point load on fibre B where it rests (just touching) across fibre A: the two beams share it

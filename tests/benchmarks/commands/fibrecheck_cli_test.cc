@@ -241,6 +241,40 @@ TEST_F(Cli, FemContinuousLineContactAndParaViewBeams) {
   EXPECT_EQ(r["contacts"][0]["points"].size(), 80u);
   EXPECT_NE(slurp(dir_ + "beams/c.vtu").find("\"displacement\""), std::string::npos);
 }
+
+// compare on the crossing: point contacts only, so the reference on slices is the ground truth,
+// the slicing error is zero and the user's run agrees with it to the iteration's tolerance
+// (t_d = 1e-9 mm on deflections of ~1e-3 mm).
+TEST_F(Cli, CompareTwoCrossingFibresAgreesAndWritesEveryResult) {
+  const Outcome r = run("compare " + scene("two_fibres_crossing") + " --out " + dir_ + "cmp -q");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const json c = json::parse(slurp(dir_ + "cmp/two_fibres_crossing/compare.json"));
+  EXPECT_TRUE(c["comparable"].get<bool>());
+  EXPECT_EQ(c["ground_truth"], "reference_slices");
+  for (const char* metric : {"deflection_error", "force_error", "energy_error"}) {
+    EXPECT_LT(c[metric].get<double>(), 1e-6) << metric;
+    EXPECT_EQ(c["slicing_error"][metric].get<double>(), 0.0) << metric;
+    EXPECT_DOUBLE_EQ(c["iteration_error"][metric].get<double>(), c[metric].get<double>());
+  }
+  ASSERT_EQ(c["pairs"].size(), 1u);
+  for (const auto& [label, file] : c["files"].items())
+    EXPECT_TRUE(fs::exists(dir_ + "cmp/two_fibres_crossing/" + file.get<std::string>())) << label;
+  // The same errors from the stored results, without running a solver.
+  const Outcome stored = run(
+      "compare --run " + dir_ + "cmp/two_fibres_crossing/user.result.json" + " --truth " + dir_ +
+      "cmp/two_fibres_crossing/reference_slices.result.json" + " --out " + dir_ + "stored.json -q");
+  ASSERT_EQ(stored.code, 0) << stored.err;
+  EXPECT_DOUBLE_EQ(json::parse(slurp(dir_ + "stored.json"))["force_error"].get<double>(),
+                   c["force_error"].get<double>());
+  // A bad scene among good ones: exit 2, nothing written.
+  json negative = crossing();
+  negative["fibres"][1]["radius"] = -0.01;
+  const Outcome bad = run("compare " + scene("two_fibres_crossing") + " " +
+                          write("neg.json", negative) + " --out " + dir_ + "bad -q");
+  EXPECT_EQ(bad.code, 2);
+  EXPECT_NE(bad.err.find("fibres[1].radius"), std::string::npos) << bad.err;
+  EXPECT_FALSE(fs::exists(dir_ + "bad"));
+}
 #endif
 
 }  // namespace

@@ -1,0 +1,58 @@
+#include "gnuplot.h"
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "atomic_file.h"
+
+namespace fibrecheck {
+
+Gnuplot::Gnuplot(std::string folder) : folder_(std::move(folder)) {
+  const char* named = std::getenv("FIBRECHECK_GNUPLOT");
+  program_ = named && *named ? named : "gnuplot";
+  const std::string probe = "'" + program_ + "' -e 'exit' >/dev/null 2>&1";
+  available_ = std::system(probe.c_str()) == 0;
+}
+
+bool Gnuplot::plot(const std::string& name, const std::string& body,
+                   const std::vector<Series>& series, std::string* why) {
+  namespace fs = std::filesystem;
+  const fs::path src = fs::path(folder_) / "src";
+  fs::create_directories(src);
+  std::string script = body;
+  for (std::size_t k = 0; k < series.size(); ++k) {
+    const std::string file = "src/" + name + "." + std::to_string(k) + ".dat";
+    write_file_atomically((fs::path(folder_) / file).string(), series[k].rows);
+    const std::string placeholder = "@DATA" + std::to_string(k) + "@";
+    for (std::size_t at = script.find(placeholder); at != std::string::npos;
+         at = script.find(placeholder, at + file.size() + 2))
+      script.replace(at, placeholder.size(), "'" + file + "'");
+  }
+  std::ostringstream gp;
+  gp << "# " << name << ": drawn by fibrecheck report; run `gnuplot src/" << name
+     << ".gp` in the figures folder to draw it again.\n"
+     << "set terminal pngcairo size 960,640 font 'Sans,14' enhanced\n"
+     << "set output '" << name << ".png'\n"
+     << script << "\n"
+     << "set terminal svg size 960,640 font 'Sans,14' enhanced\n"
+     << "set output '" << name << ".svg'\n"
+     << "replot\n";
+  write_file_atomically((src / (name + ".gp")).string(), gp.str());
+  if (!available_) {
+    if (why) *why = "gnuplot (" + program_ + ") cannot be run";
+    return false;
+  }
+  const std::string command =
+      "cd '" + folder_ + "' && '" + program_ + "' src/" + name + ".gp > src/" + name + ".log 2>&1";
+  const int status = std::system(command.c_str());
+  const fs::path png = fs::path(folder_) / (name + ".png");
+  if (status != 0 || !fs::exists(png) || fs::file_size(png) == 0) {
+    if (why) *why = "gnuplot failed on src/" + name + ".gp (see src/" + name + ".log)";
+    return false;
+  }
+  return true;
+}
+
+}  // namespace fibrecheck

@@ -1,0 +1,34 @@
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "result.h"
+
+namespace fibrecheck {
+
+/// One comparison as the harness stored it: compare.json and the result files beside it.
+struct StoredComparison {
+  std::string folder;
+  nlohmann::json summary;  ///< compare.json
+  Result user;             ///< the user's run
+  Result truth;            ///< the ground truth it was measured against
+  bool has_results = false;
+};
+
+/// Everything the report reads: the harness's data, found anywhere below the folders given.
+struct ReportData {
+  std::vector<StoredComparison> comparisons;
+  nlohmann::json slice_studies = nlohmann::json::array();      ///< slice_study.json entries
+  nlohmann::json tolerance_studies = nlohmann::json::array();  ///< tolerance_study.json entries
+  nlohmann::json stability_studies = nlohmann::json::array();  ///< stability_study.json entries
+  std::vector<std::string> sources;                            ///< the files read
+};
+
+/// Reads every compare.json, slice_study.json, tolerance_study.json and stability_study.json
+/// below `folders`. Throws InputError naming a folder that does not exist or a file that is not
+/// the harness's.
+ReportData read_report_data(const std::vector<std::string>& folders);
+
+}  // namespace fibrecheck

@@ -1,0 +1,476 @@
+#include "report_writer.h"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <map>
+#include <set>
+#include <sstream>
+
+#include "atomic_file.h"
+#include "gnuplot.h"
+#include "tables.h"
+
+namespace fibrecheck {
+
+namespace {
+
+using nlohmann::json;
+
+double number(const json& j, const char* key) {
+  return j.contains(key) && j[key].is_number() ? j[key].get<double>() : NAN;
+}
+
+std::string csv_cell(double x) {
+  if (!std::isfinite(x)) return "";
+  char text[32];
+  std::snprintf(text, sizeof text, "%.10g", x);
+  return text;
+}
+
+/// A scene name for file names.
+std::string slug(std::string name) {
+  for (char& c : name)
+    if (!std::isalnum(static_cast<unsigned char>(c)) && c != '_' && c != '-') c = '_';
+  return name;
+}
+
+struct FigureEntry {
+  std::string name, caption;
+};
+
+/// The report being assembled: its Markdown body, the LaTeX body, the numbered items.
+class Report {
+ public:
+  explicit Report(const std::string& folder)
+      : folder_(folder), gnuplot_((folder_ / "figures").string()) {
+    std::filesystem::create_directories(folder_ / "tables");
+    std::filesystem::create_directories(folder_ / "figures");
+    std::filesystem::create_directories(folder_ / "data");
+  }
+
+  void section(const std::string& title, const std::string& text) {
+    md_ << "\n## " << title << "\n\n" << text << "\n";
+    tex_ << "\n\\section{" << latex_escape(title) << "}\n" << latex_escape(text) << "\n";
+  }
+
+  void table(const Table& t) {
+    ++summary_.tables;
+    md_ << "\n" << markdown(t, summary_.tables) << "\n";
+    write_file_atomically((folder_ / "tables" / (t.label + ".tex")).string(), latex(t));
+    tex_ << "\n\\input{tables/" << t.label << ".tex}\n";
+  }
+
+  void figure(const std::string& name, const std::string& caption, const std::string& body,
+              const std::vector<Gnuplot::Series>& series) {
+    std::string why;
+    if (!gnuplot_.plot(name, body, series, &why)) {
+      summary_.missing.push_back(name + ": " + why);
+      return;
+    }
+    ++summary_.figures;
+    md_ << "\n![Figure " << summary_.figures << "](figures/" << name << ".png)\n\n**Figure "
+        << summary_.figures << ".** " << caption << "\n";
+    tex_ << "\n\\begin{figure}[htbp]\n  \\centering\n  "
+            "\\includegraphics[width=0.85\\linewidth]{figures/"
+         << name << ".png}\n  \\caption{" << latex_escape(caption) << "}\n  \\label{fig:" << name
+         << "}\n\\end{figure}\n";
+  }
+
+  void csv(const std::string& name, const std::vector<std::string>& header,
+           const std::vector<std::vector<std::string>>& rows) {
+    std::ostringstream out;
+    for (std::size_t i = 0; i < header.size(); ++i) out << (i ? "," : "") << header[i];
+    out << "\n";
+    for (const auto& row : rows) {
+      for (std::size_t i = 0; i < row.size(); ++i) out << (i ? "," : "") << row[i];
+      out << "\n";
+    }
+    write_file_atomically((folder_ / "data" / (name + ".csv")).string(), out.str());
+  }
+
+  ReportSummary finish(const std::vector<std::string>& sources) {
+    std::ostringstream md;
+    md << "# fibrecheck: the iterative fibre-contact method, checked\n\n"
+       << "Errors are relative and the worst over the scene (DESIGN §6): deflection, max over "
+          "fibres and samples of ‖u − u_truth‖ / max‖u_truth‖; force, max over contact pairs of "
+          "the relative error of the total force; energy, of ½ΣP·v. The ground truth is the "
+          "implicit finite-element reference with continuous line contact (on slices where a "
+          "scene has only point contacts).\n"
+       << md_.str() << "\n---\nData read: " << sources.size() << " files; "
+       << "tables in `tables/`, figures in `figures/` (their gnuplot scripts in `figures/src/`), "
+          "the numbers in `data/`.\n";
+    if (!summary_.missing.empty()) {
+      md << "\nFigures not drawn:\n";
+      for (const std::string& m : summary_.missing) md << "- " << m << "\n";
+    }
+    write_file_atomically((folder_ / "report.md").string(), md.str());
+    std::ostringstream tex;
+    tex << "\\documentclass[a4paper,11pt]{article}\n\\usepackage[T1]{fontenc}\n"
+           "\\usepackage{booktabs}\n\\usepackage{graphicx}\n\\usepackage[margin=2.2cm]{geometry}\n"
+           "\\title{fibrecheck: the iterative fibre-contact method, checked}\n\\date{}\n"
+           "\\begin{document}\n\\maketitle\n"
+        << tex_.str() << "\n\\end{document}\n";
+    write_file_atomically((folder_ / "report.tex").string(), tex.str());
+    return summary_;
+  }
+
+  ReportSummary& summary() { return summary_; }
+
+ private:
+  std::filesystem::path folder_;
+  Gnuplot gnuplot_;
+  std::ostringstream md_, tex_;
+  ReportSummary summary_;
+};
+
+std::string describe_truth(double estimate) {
+  if (!(estimate >= 0.0)) return "exact for its slices (point contacts only, or no line contact)";
+  return "its extrapolated line force within an estimated " + sci(estimate) + " (relative)";
+}
+
+void comparisons(Report& report, const ReportData& data) {
+  if (data.comparisons.empty()) return;
+  report.section("Accuracy on each scene",
+                 "Each scene was solved by the iterative method as the scene specifies it (rule, "
+                 "tolerance, slices), by the same method converged to 1e-4 of the scene's "
+                 "tolerance, by the reference on the same slices, and by the reference with "
+                 "continuous line contact. The error of the user's run is split into the stopping "
+                 "criterion's part (against the reference on the same slices) and the slices' "
+                 "part (the reference on slices against the continuous one).");
+  Table t;
+  t.label = "comparison";
+  t.caption =
+      "Relative error of the iterative method as each scene specifies it against the ground "
+      "truth, and its split into iteration (stopping criterion) and slicing (slice approximation) "
+      "errors, each the worst of deflection, force and energy; run times of the user's run and "
+      "of the ground truth.";
+  t.header = {"Scene",     "Rule",    "Deflection",    "Force",        "Energy",
+              "Iteration", "Slicing", "Iterative (s)", "Reference (s)"};
+  std::vector<std::vector<std::string>> rows;
+  for (const StoredComparison& c : data.comparisons) {
+    const json& s = c.summary;
+    const std::string scene = s["scene"];
+    const std::string rule = s.value("rule", "");
+    const json& runs = s["runs"];
+    const std::string truth = s.value("ground_truth", "reference_slices");
+    const double user_time = number(runs["user"], "wall_time_s");
+    const double truth_time = runs.contains(truth) ? number(runs[truth], "wall_time_s") : NAN;
+    if (!s.value("comparable", false)) {
+      t.rows.push_back({scene, rule, "not comparable", s.value("not_comparable", ""), "", "", "",
+                        seconds(user_time), seconds(truth_time)});
+      continue;
+    }
+    auto worst = [&](const char* key) {
+      const json& e = s[key];
+      return std::max(
+          {number(e, "deflection_error"), number(e, "force_error"), number(e, "energy_error")});
+    };
+    t.rows.push_back({scene, rule, sci(number(s, "deflection_error")),
+                      sci(number(s, "force_error")), sci(number(s, "energy_error")),
+                      sci(worst("iteration_error")), sci(worst("slicing_error")),
+                      seconds(user_time), seconds(truth_time)});
+    rows.push_back({scene, rule, csv_cell(number(s, "deflection_error")),
+                    csv_cell(number(s, "force_error")), csv_cell(number(s, "energy_error")),
+                    csv_cell(worst("iteration_error")), csv_cell(worst("slicing_error")),
+                    csv_cell(user_time), csv_cell(truth_time)});
+  }
+  report.table(t);
+  std::ostringstream headline;
+  headline << markdown(t, 1);
+  report.summary().headline += headline.str();
+  report.csv("comparison",
+             {"scene", "rule", "deflection_error", "force_error", "energy_error", "iteration_error",
+              "slicing_error", "iterative_time_s", "reference_time_s"},
+             rows);
+
+  for (const StoredComparison& c : data.comparisons) {
+    if (!c.has_results) continue;
+    const std::string scene = c.summary["scene"];
+    const std::string name = slug(scene);
+    // Convergence history of the user's run.
+    std::ostringstream overlap, energy;
+    for (const HistoryEntry& h : c.user.history) {
+      if (h.max_overlap > 0.0) overlap << h.iteration << " " << h.max_overlap << "\n";
+      if (std::isfinite(h.strain_energy)) energy << h.iteration << " " << h.strain_energy << "\n";
+    }
+    if (c.user.history.size() >= 2 && !overlap.str().empty()) {
+      report.figure(
+          "history_" + name,
+          "Convergence of the iterative method on " + scene + " (rule " + c.user.rule +
+              "): the largest overlap (left, logarithmic) and the strain energy by the trapezium "
+              "rule, Eq. 4.34 (right), at each recorded iteration.",
+          "set logscale x\nset logscale y\nset xlabel 'iteration'\nset ylabel 'largest overlap "
+          "(mm)'\nset y2label 'strain energy (N mm)'\nset y2tics\nset ytics nomirror\nset format y "
+          "'10^{%L}'\nset key center right\nset grid\nplot @DATA0@ using 1:2 with linespoints pt 7 "
+          "ps 0.5 lw 2 title 'largest overlap', @DATA1@ using 1:2 axes x1y2 with lines lw 2 dt 2 "
+          "title 'strain energy'",
+          {{overlap.str()}, {energy.str()}});
+    }
+    // The most deflected fibre, both solvers.
+    std::size_t fibre = 0;
+    double largest = -1.0;
+    for (std::size_t f = 0; f < c.truth.fibres.size(); ++f)
+      for (const Eigen::Vector3d& u : c.truth.fibres[f].displacement)
+        if (u.norm() > largest) largest = u.norm(), fibre = f;
+    if (largest > 0.0 && fibre < c.user.fibres.size()) {
+      const FibreResult& truth = c.truth.fibres[fibre];
+      Eigen::Vector3d direction = Eigen::Vector3d::Zero();
+      for (const Eigen::Vector3d& u : truth.displacement)
+        if (u.norm() > direction.norm()) direction = u;
+      direction.normalize();
+      auto series = [&](const FibreResult& f) {
+        std::ostringstream out;
+        const std::size_t n = f.displacement.size();
+        for (std::size_t j = 0; j < n; ++j)
+          out << (n > 1 ? double(j) / (n - 1) : 0.0) << " "
+              << 1e3 * f.displacement[j].dot(direction) << "\n";
+        return out.str();
+      };
+      report.figure("deflection_" + name,
+                    "Deflection of fibre " + truth.id + " of " + scene +
+                        " (the most deflected) along its largest displacement, from the iterative "
+                        "method (rule " +
+                        c.user.rule + ") and the reference.",
+                    "set xlabel 'position along the fibre, s = x / L'\nset ylabel 'deflection "
+                    "(µm)'\nset key bottom center\nset grid\nplot @DATA0@ using 1:2 with lines lw "
+                    "4 lc rgb '#888888' title 'reference (ground truth)', @DATA1@ using 1:2 with "
+                    "lines lw 2 dt 2 lc rgb '#c00000' title 'iterative, rule " +
+                        c.user.rule + "'",
+                    {{series(truth)}, {series(c.user.fibres[fibre])}});
+    }
+  }
+}
+
+void slice_studies(Report& report, const ReportData& data) {
+  if (data.slice_studies.empty()) return;
+  report.section("Accuracy against the number of slices",
+                 "A line contact between nearly parallel fibres is approximated by n cross-section "
+                 "slices (Figures 4.11–4.12, Eq. 4.28). Each scene was solved by the iterative "
+                 "method with its own rule and tolerance at each n and measured against the "
+                 "continuous reference; the observed order p fits error ∝ n^−p.");
+  Table t;
+  t.label = "slice_study";
+  std::vector<std::vector<std::string>> rows;
+  std::ostringstream caption;
+  caption << "Relative error of the iterative method against the continuous reference, and its "
+             "run time, per slice count.";
+  t.header = {"Scene", "Slices", "Deflection", "Force", "Energy", "Iterations", "Time (s)"};
+  for (const json& s : data.slice_studies) {
+    const std::string scene = s["scene"];
+    caption << " " << scene << ": rule " << s.value("rule", "")
+            << ", t_d = " << sci(number(s, "overlap_tolerance")) << " mm, ground truth "
+            << describe_truth(number(s, "truth_error_estimate")) << "; observed order "
+            << (s["order"]["deflection_error"].is_number()
+                    ? seconds(s["order"]["deflection_error"].get<double>())
+                    : "–")
+            << " (deflection), "
+            << (s["order"]["force_error"].is_number()
+                    ? seconds(s["order"]["force_error"].get<double>())
+                    : "–")
+            << " (force), "
+            << (s["order"]["energy_error"].is_number()
+                    ? seconds(s["order"]["energy_error"].get<double>())
+                    : "–")
+            << " (energy).";
+    std::ostringstream d, f, e;
+    for (const json& p : s["points"]) {
+      const double n = number(p, "slices");
+      t.rows.push_back({scene, std::to_string(static_cast<int>(n)),
+                        sci(number(p, "deflection_error")), sci(number(p, "force_error")),
+                        sci(number(p, "energy_error")), std::to_string(p.value("iterations", 0L)),
+                        seconds(number(p, "iterative_time_s"))});
+      rows.push_back({scene, std::to_string(static_cast<int>(n)),
+                      csv_cell(number(p, "iterative_time_s")),
+                      csv_cell(number(p, "deflection_error")), csv_cell(number(p, "force_error")),
+                      csv_cell(number(p, "energy_error"))});
+      if (number(p, "deflection_error") > 0) d << n << " " << number(p, "deflection_error") << "\n";
+      if (number(p, "force_error") > 0) f << n << " " << number(p, "force_error") << "\n";
+      if (number(p, "energy_error") > 0) e << n << " " << number(p, "energy_error") << "\n";
+    }
+    auto order = [&](const char* key) {
+      return s["order"][key].is_number() ? seconds(s["order"][key].get<double>())
+                                         : std::string("–");
+    };
+    report.figure("slices_" + slug(scene),
+                  "Relative error of the iterative method on " + scene +
+                      " against the continuous reference, per slice count n (rule " +
+                      s.value("rule", "") + "), with the observed orders of convergence.",
+                  "set logscale xy\nset xlabel 'slices n'\nset ylabel 'relative error'\nset format "
+                  "y '10^{%L}'\nset key top right\nset grid\nplot @DATA0@ using 1:2 with "
+                  "linespoints pt 7 lw 2 title 'deflection, order " +
+                      order("deflection_error") +
+                      "', @DATA1@ using 1:2 with linespoints pt 5 lw 2 title 'force, order " +
+                      order("force_error") +
+                      "', @DATA2@ using 1:2 with linespoints pt 9 lw 2 "
+                      "title 'energy, order " +
+                      order("energy_error") + "'",
+                  {{d.str()}, {f.str()}, {e.str()}});
+  }
+  t.caption = caption.str();
+  report.table(t);
+  report.csv(
+      "slice_study",
+      {"scene", "slices", "iterative_time_s", "deflection_error", "force_error", "energy_error"},
+      rows);
+}
+
+void tolerance_studies(Report& report, const ReportData& data) {
+  if (data.tolerance_studies.empty()) return;
+  report.section("Accuracy against run time",
+                 "Each update rule was run at overlap tolerances t_d over several decades, and the "
+                 "reference's continuous line contact at several refinements; each point is the "
+                 "worst of its deflection, force and energy errors against the ground truth. The "
+                 "speed-up at equal error compares the fastest run of each kind that reaches an "
+                 "error level.");
+  Table t;
+  t.label = "speedup";
+  t.caption =
+      "Speed-up of the iterative method over the implicit reference at equal error: the "
+      "fastest converged run of each that reaches the error level (worst of deflection, "
+      "force and energy).";
+  t.header = {"Scene",         "Error level",   "Iterative rule",
+              "Iterative (s)", "Reference (s)", "Speed-up"};
+  std::vector<std::vector<std::string>> rows, points;
+  for (const json& s : data.tolerance_studies) {
+    const std::string scene = s["scene"];
+    for (const json& u : s["speedups"]) {
+      t.rows.push_back(
+          {scene, sci(number(u, "error_level")),
+           u.value("iterative_method", "–").empty() ? "–" : u.value("iterative_method", "–"),
+           seconds(number(u, "iterative_time_s")), seconds(number(u, "reference_time_s")),
+           std::isfinite(number(u, "speedup")) ? seconds(number(u, "speedup")) : "not reached"});
+      rows.push_back({scene, csv_cell(number(u, "error_level")),
+                      csv_cell(number(u, "iterative_time_s")),
+                      csv_cell(number(u, "reference_time_s")), csv_cell(number(u, "speedup"))});
+    }
+    // Per method, every converged point, and its Pareto front (the runs no faster run beats).
+    std::map<std::string, std::vector<std::pair<double, double>>> methods, fronts;
+    for (const json& p : s["points"]) {
+      const double worst = std::max(
+          {number(p, "deflection_error"), number(p, "force_error"), number(p, "energy_error")});
+      points.push_back({scene, p.value("method", ""), csv_cell(number(p, "parameter")),
+                        csv_cell(number(p, "time_s")), std::to_string(p.value("iterations", 0L)),
+                        p.value("status", ""), csv_cell(worst)});
+      if (p.value("status", "") == "converged" && worst > 0 && number(p, "time_s") > 0) {
+        methods[p.value("method", "")].push_back({number(p, "time_s"), worst});
+        if (p.value("pareto", false))
+          fronts[p.value("method", "")].push_back({number(p, "time_s"), worst});
+      }
+    }
+    std::vector<Gnuplot::Series> series;
+    std::ostringstream plot;
+    plot << "set logscale xy\nset xlabel 'run time (s)'\nset ylabel 'relative error (worst of "
+            "deflection, force, energy)'\nset format y '10^{%L}'\nset format x '10^{%L}'\nset key "
+            "outside right top\nset grid\nplot ";
+    int k = 0, colour = 1;
+    const int types[] = {7, 5, 9, 11, 13, 15};
+    for (auto& [method, list] : methods) {
+      auto& front = fronts[method];
+      std::sort(front.begin(), front.end());
+      std::ostringstream all, best;
+      for (const auto& [time, error] : list) all << time << " " << error << "\n";
+      for (const auto& [time, error] : front) best << time << " " << error << "\n";
+      series.push_back({all.str()});
+      series.push_back({best.str().empty() ? "nan nan\n" : best.str()});
+      plot << (k ? ", " : "") << "@DATA" << k << "@ using 1:2 with points pt "
+           << types[(colour - 1) % 6] << " ps 1.2 lc " << colour << " title '" << method
+           << "', @DATA" << k + 1 << "@ using 1:2 with lines lw 2 lc " << colour << " notitle";
+      k += 2;
+      ++colour;
+    }
+    if (k > 0)
+      report.figure(
+          "error_vs_time_" + slug(scene),
+          "Relative error against run time on " + scene +
+              ": every converged run of each update rule of the iterative method (overlap "
+              "tolerances and slice counts) and of the reference (refinements); the lines "
+              "join each method's Pareto front.",
+          plot.str(), series);
+  }
+  report.table(t);
+  report.summary().headline += "\n" + markdown(t, report.summary().tables);
+  report.csv("speedup", {"scene", "error_level", "iterative_time_s", "reference_time_s", "speedup"},
+             rows);
+  report.csv("tolerance_study",
+             {"scene", "method", "parameter", "time_s", "iterations", "status", "worst_error"},
+             points);
+}
+
+void stability_studies(Report& report, const ReportData& data) {
+  if (data.stability_studies.empty()) return;
+  report.section(
+      "Stability of the force update",
+      "The seed's update P' = P + c·d (§4.3.2) is a projected Richardson iteration on "
+      "the contact compliance W; its step is c·D (c/n per slice, Eq. 4.28), stable for c "
+      "below c_crit = 2/λmax(D½WD½), which every run estimates.");
+  Table t;
+  t.label = "stability";
+  t.caption =
+      "Rule seed with c as a fraction of its stable limit c_crit: how each run ended and "
+      "after how many iterations (divergence is detected, not waited out).";
+  t.header = {"Scene", "c / c_crit", "c (N/mm)", "Status", "Criterion", "Iterations"};
+  Table stiff;
+  stiff.label = "stiffness";
+  stiff.caption =
+      "The Young's modulus of every second fibre multiplied by a ratio: iterations, time "
+      "and the worst relative error against the reference at the same ratio, per rule.";
+  stiff.header = {"Scene", "Ratio", "Method", "Status", "Iterations", "Time (s)", "Error"};
+  std::vector<std::vector<std::string>> rows;
+  for (const json& s : data.stability_studies) {
+    const std::string scene = s["scene"];
+    std::ostringstream converged, diverged, other;
+    for (const json& p : s["steps"]) {
+      const std::string status = p.value("status", "");
+      t.rows.push_back({scene, seconds(number(p, "c_over_c_crit")), sci(number(p, "c")), status,
+                        p.value("criterion", ""), std::to_string(p.value("iterations", 0L))});
+      rows.push_back({scene, csv_cell(number(p, "c_over_c_crit")), csv_cell(number(p, "c")),
+                      std::to_string(p.value("iterations", 0L)), status, p.value("criterion", "")});
+      std::ostringstream& into = status == "converged"  ? converged
+                                 : status == "diverged" ? diverged
+                                                        : other;
+      into << number(p, "c_over_c_crit") << " " << std::max(1L, p.value("iterations", 0L)) << "\n";
+    }
+    for (const json& p : s["stiffness"]) {
+      const double worst = std::max(
+          {number(p, "deflection_error"), number(p, "force_error"), number(p, "energy_error")});
+      stiff.rows.push_back({scene, sci(number(p, "stiffness_ratio")), p.value("method", ""),
+                            p.value("status", ""), std::to_string(p.value("iterations", 0L)),
+                            seconds(number(p, "time_s")),
+                            p.value("method", "") == "reference" ? "(truth)" : sci(worst)});
+    }
+    report.figure(
+        "stability_" + slug(scene),
+        "Iterations of the seed's rule on " + scene +
+            " against c / c_crit: converged runs, and the iteration at which divergence "
+            "was detected; c_crit = " +
+            sci(number(s, "c_crit")) + " N/mm.",
+        "set logscale y\nset xlabel 'c / c_{crit}'\nset ylabel 'iterations'\nset format y "
+        "'10^{%L}'\nset xrange [0:*]\nset offsets 0, graph 0.05, graph 0.1, 0\nset key "
+        "top center\nset grid\nset arrow from 1, graph 0 to 1, graph 1 "
+        "nohead dt 2 lc rgb '#666666'\nplot @DATA0@ using 1:2 with linespoints pt 7 ps "
+        "1.5 lw 2 title 'converged', @DATA1@ using 1:2 with points pt 2 ps 2 lw 3 title "
+        "'diverged (iteration detected)', @DATA2@ using 1:2 with points pt 6 ps 2 title "
+        "'iteration cap'",
+        {{converged.str().empty() ? "nan nan\n" : converged.str()},
+         {diverged.str().empty() ? "nan nan\n" : diverged.str()},
+         {other.str().empty() ? "nan nan\n" : other.str()}});
+  }
+  report.table(t);
+  if (!stiff.rows.empty()) report.table(stiff);
+  report.csv("stability", {"scene", "c_over_c_crit", "c", "iterations", "status", "criterion"},
+             rows);
+}
+
+}  // namespace
+
+ReportSummary write_report(const ReportData& data, const std::string& folder) {
+  Report report(folder);
+  comparisons(report, data);
+  slice_studies(report, data);
+  tolerance_studies(report, data);
+  stability_studies(report, data);
+  return report.finish(data.sources);
+}
+
+}  // namespace fibrecheck

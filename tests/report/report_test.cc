@@ -1,0 +1,114 @@
+// The report from a small committed fixture of harness data (a comparison of two crossing fibres
+// and one slice, tolerance and stability study): the files exist, the tables hold the fixture's
+// numbers, the figures are non-empty PNG files, the LaTeX tables are well-formed, and without
+// gnuplot the tables still come out with a message saying what is missing.
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "input_error.h"
+#include "report_data.h"
+#include "report_writer.h"
+
+namespace fibrecheck {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string slurp(const fs::path& path) {
+  std::stringstream s;
+  s << std::ifstream(path).rdbuf();
+  return s.str();
+}
+
+int count(const std::string& text, const std::string& what) {
+  int n = 0;
+  for (std::size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
+  return n;
+}
+
+const std::string kFixture = FIBRECHECK_REPORT_FIXTURE;
+
+TEST(Report, FromTheFixture) {
+  const fs::path out = ::testing::TempDir() + "report_fixture";
+  fs::remove_all(out);
+  const ReportData data = read_report_data({kFixture});
+  EXPECT_EQ(data.comparisons.size(), 1u);
+  EXPECT_EQ(data.slice_studies.size(), 1u);
+  const ReportSummary summary = write_report(data, out.string());
+  EXPECT_EQ(summary.tables, 5);
+  EXPECT_TRUE(summary.missing.empty()) << summary.missing.front();
+  EXPECT_GE(summary.figures, 5);
+  const std::string md = slurp(out / "report.md");
+  // The fixture's numbers: the slice study's 8-slice force error 0.02698, the speed-up 22.34 at
+  // 1 %, the crossing's force error 2.37e-11.
+  EXPECT_NE(md.find("| parallel_fibres | 8 | 6.52e-05 | 2.70e-02 | 1.38e-05 | 865 |"),
+            std::string::npos);
+  EXPECT_NE(md.find("| small_tow_19 | 1.00e-02 | accelerated | 0.03402 | 0.76 | 22.34 |"),
+            std::string::npos);
+  EXPECT_NE(md.find("| two_fibres_crossing | auto | 2.36e-09 | 2.37e-11 |"), std::string::npos);
+  EXPECT_EQ(count(md, "**Table "), summary.tables);
+  EXPECT_EQ(count(md, "**Figure "), summary.figures);
+  // Figures: PNG files with their signature, and SVG beside them.
+  int pngs = 0;
+  for (const auto& entry : fs::directory_iterator(out / "figures")) {
+    if (entry.path().extension() != ".png") continue;
+    ++pngs;
+    EXPECT_GT(fs::file_size(entry.path()), 1000u) << entry.path();
+    EXPECT_EQ(slurp(entry.path()).substr(1, 3), "PNG") << entry.path();
+    fs::path svg = entry.path();
+    EXPECT_TRUE(fs::exists(svg.replace_extension(".svg"))) << svg;
+  }
+  EXPECT_EQ(pngs, summary.figures);
+  // LaTeX: every table a balanced table/tabular with booktabs rules; the document inputs them.
+  int tables = 0;
+  for (const auto& entry : fs::directory_iterator(out / "tables")) {
+    const std::string tex = slurp(entry.path());
+    ++tables;
+    EXPECT_EQ(count(tex, "\\begin{table}"), 1) << entry.path();
+    EXPECT_EQ(count(tex, "\\end{table}"), 1) << entry.path();
+    EXPECT_EQ(count(tex, "\\begin{tabular}"), count(tex, "\\end{tabular}")) << entry.path();
+    EXPECT_EQ(count(tex, "\\toprule"), 1);
+    EXPECT_EQ(count(tex, "\\bottomrule"), 1);
+    EXPECT_EQ(count(tex, "{"), count(tex, "}") - count(tex, "\\}") + count(tex, "\\{"))
+        << entry.path();
+    EXPECT_EQ(tex.find("_"),
+              tex.find("\\_") == std::string::npos ? std::string::npos : tex.find("\\_") + 1)
+        << "an unescaped underscore in " << entry.path();
+  }
+  EXPECT_EQ(tables, summary.tables);
+  const std::string document = slurp(out / "report.tex");
+  EXPECT_EQ(count(document, "\\input{tables/"), summary.tables);
+  EXPECT_EQ(count(document, "\\includegraphics"), summary.figures);
+  // The data.
+  EXPECT_EQ(slurp(out / "data" / "slice_study.csv")
+                .find("scene,slices,iterative_time_s,deflection_error,force_error,energy_error\n"),
+            0u);
+  EXPECT_EQ(slurp(out / "data" / "speedup.csv")
+                .find("scene,error_level,iterative_time_s,reference_time_s,speedup\n"),
+            0u);
+}
+
+TEST(Report, WithoutGnuplotTheTablesStillComeOut) {
+  const fs::path out = ::testing::TempDir() + "report_no_gnuplot";
+  fs::remove_all(out);
+  setenv("FIBRECHECK_GNUPLOT", "/nonexistent/gnuplot", 1);
+  const ReportSummary summary = write_report(read_report_data({kFixture}), out.string());
+  unsetenv("FIBRECHECK_GNUPLOT");
+  EXPECT_EQ(summary.tables, 5);
+  EXPECT_EQ(summary.figures, 0);
+  ASSERT_FALSE(summary.missing.empty());
+  EXPECT_NE(summary.missing.front().find("gnuplot"), std::string::npos) << summary.missing.front();
+  EXPECT_NE(slurp(out / "report.md").find("Figures not drawn"), std::string::npos);
+  EXPECT_TRUE(fs::exists(out / "tables" / "comparison.tex"));
+}
+
+TEST(Report, AFolderThatDoesNotExistIsBadInput) {
+  EXPECT_THROW(read_report_data({"/nonexistent/folder"}), InputError);
+}
+
+}  // namespace
+}  // namespace fibrecheck
