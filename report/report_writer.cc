@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "atomic_file.h"
+#include "csv_file.h"
 #include "gnuplot.h"
 #include "tables.h"
 
@@ -79,14 +80,7 @@ class Report {
 
   void csv(const std::string& name, const std::vector<std::string>& header,
            const std::vector<std::vector<std::string>>& rows) {
-    std::ostringstream out;
-    for (std::size_t i = 0; i < header.size(); ++i) out << (i ? "," : "") << header[i];
-    out << "\n";
-    for (const auto& row : rows) {
-      for (std::size_t i = 0; i < row.size(); ++i) out << (i ? "," : "") << row[i];
-      out << "\n";
-    }
-    write_file_atomically((folder_ / "data" / (name + ".csv")).string(), out.str());
+    write_csv((folder_ / "data" / (name + ".csv")).string(), header, rows);
   }
 
   ReportSummary finish(const std::vector<std::string>& sources) {

@@ -384,6 +384,15 @@ class ParsePath {
 
 }  // namespace
 
+std::vector<Scene> read_scenes(const std::vector<std::string>& paths) {
+  std::vector<Scene> scenes;
+  for (const std::string& path : paths) {
+    scenes.push_back(read_scene(path));
+    validate_scene(scenes.back());
+  }
+  return scenes;
+}
+
 Scene read_scene(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in || std::filesystem::is_directory(path)) {

@@ -86,6 +86,8 @@ UpdateRule parse_update_rule(const std::string& text, const std::string& file,
 
 /// Reads and validates a scene file. Throws InputError (file, field, reason) on any bad input.
 Scene read_scene(const std::string& path);
+/// Reads every scene file and checks its physics (`validate_scene`) before anything runs.
+std::vector<Scene> read_scenes(const std::vector<std::string>& paths);
 /// Validates a parsed JSON document as a scene; `source` names it in messages.
 Scene scene_from_json(const nlohmann::json& document, const std::string& source);
 /// Checks the physics of a scene (also after command-line overrides). Throws InputError.

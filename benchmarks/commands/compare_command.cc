@@ -52,12 +52,7 @@ int run_compare(const CompareArguments& args) {
   }
   if (args.scenes.empty()) throw InputError("command line", "", "no scene file given (see --help)");
   if (args.out.empty()) throw InputError("command line", "--out", "names the output folder");
-  std::vector<Scene> scenes;
-  for (const std::string& path : args.scenes) {
-    Scene scene = read_scene(path);
-    validate_scene(scene);
-    scenes.push_back(std::move(scene));
-  }
+  const std::vector<Scene> scenes = read_scenes(args.scenes);
   if (!have_reference())
     throw InputError("command line", "",
                      "comparing scenes runs the reference: it needs the build with "

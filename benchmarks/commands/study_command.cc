@@ -18,12 +18,7 @@ namespace fibrecheck {
 
 int run_study(const StudyArguments& args) {
   if (args.scenes.empty()) throw InputError("command line", "", "no scene file given (see --help)");
-  std::vector<Scene> scenes;
-  for (const std::string& path : args.scenes) {
-    Scene scene = read_scene(path);
-    validate_scene(scene);
-    scenes.push_back(std::move(scene));
-  }
+  const std::vector<Scene> scenes = read_scenes(args.scenes);
   for (int n : args.slices)
     if (n < 1) throw InputError("command line", "--slices", "every slice count must be at least 1");
   if (!have_reference())

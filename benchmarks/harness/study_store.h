@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "csv_file.h"
+
 namespace fibrecheck {
 
 /// The finished points of one study, kept on disk as they finish: `<folder>/<study>.points.jsonl`,
@@ -45,12 +47,5 @@ class StudyProgress {
   bool quiet_;
   std::chrono::steady_clock::time_point begin_;
 };
-
-/// Writes `rows` (each a list of cells) as CSV with `header`, atomically.
-void write_csv(const std::string& path, const std::vector<std::string>& header,
-               const std::vector<std::vector<std::string>>& rows);
-
-/// A number as a CSV cell: 17 significant digits, empty for NaN.
-std::string cell(double value);
 
 }  // namespace fibrecheck
