@@ -592,6 +592,7 @@ void ReferenceSolver::output_results(Result& r) {
   const std::vector<NodalForce> forces = nodal_forces();
   const std::size_t samples = sample_s_.size();
   std::vector<double> u(3 * offset_.back(), 0.0), field(3 * samples * fibres_.size(), 0.0);
+  std::vector<double> moments(2 * samples * fibres_.size(), 0.0);
   if (model_) {
     model_->run(forces, true);
     for (std::size_t f = 0; f < fibres_.size(); ++f) {
@@ -603,6 +604,8 @@ void ReferenceSolver::output_results(Result& r) {
       for (std::size_t j = 0; j < samples; ++j) {
         const Eigen::Vector3d x = model_->displacement(static_cast<int>(f), sample_s_[j]);
         for (int d = 0; d < 3; ++d) field[3 * (f * samples + j) + d] = x[d];
+        const Eigen::Vector2d M = model_->moment(static_cast<int>(f), sample_s_[j]);
+        for (int d = 0; d < 2; ++d) moments[2 * (f * samples + j) + d] = M[d];
       }
     }
     if (!options_.vtu.empty()) {
@@ -625,9 +628,10 @@ void ReferenceSolver::output_results(Result& r) {
   }
   sum_over_processes(u, comm_);
   sum_over_processes(field, comm_);
+  sum_over_processes(moments, comm_);
   // Never a non-finite number in a result: a failed solve (status diverged) reports zeros.
   bool finite = true;
-  for (std::vector<double>* values : {&u, &field})
+  for (std::vector<double>* values : {&u, &field, &moments})
     for (double& x : *values)
       if (!std::isfinite(x)) x = 0.0, finite = false;
 
@@ -648,9 +652,11 @@ void ReferenceSolver::output_results(Result& r) {
   for (std::size_t f = 0; f < fibres_.size(); ++f) {
     FibreResult fr;
     fr.id = fibres_[f].id;
-    for (std::size_t j = 0; j < samples; ++j)
+    for (std::size_t j = 0; j < samples; ++j) {
       fr.displacement.emplace_back(field[3 * (f * samples + j)], field[3 * (f * samples + j) + 1],
                                    field[3 * (f * samples + j) + 2]);
+      fr.moment.emplace_back(moments[2 * (f * samples + j)], moments[2 * (f * samples + j) + 1]);
+    }
     r.fibres.push_back(std::move(fr));
   }
   r.contacts = contact_results(contacts_, fibres_, scene_.walls, force_on_a_, u_a, u_b);

@@ -49,6 +49,8 @@ ReportData read_report_data(const std::vector<std::string>& folders) {
         c.truth = read_result((file.parent_path() / files_of[truth].get<std::string>()).string());
         c.has_results = true;
       }
+      if (files_of.contains("scene"))
+        c.scene = read_scene((file.parent_path() / files_of["scene"].get<std::string>()).string());
       data.comparisons.push_back(std::move(c));
     } else if (name == "slice_study.json" || name == "tolerance_study.json" ||
                name == "stability_study.json") {

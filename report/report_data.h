@@ -1,10 +1,12 @@
 #pragma once
 
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "result.h"
+#include "scene.h"
 
 namespace fibrecheck {
 
@@ -15,6 +17,7 @@ struct StoredComparison {
   Result user;             ///< the user's run
   Result truth;            ///< the ground truth it was measured against
   bool has_results = false;
+  std::optional<Scene> scene;  ///< the scene itself, where the comparison kept it
 };
 
 /// Everything the report reads: the harness's data, found anywhere below the folders given.

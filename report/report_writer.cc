@@ -1,5 +1,6 @@
 #include "report_writer.h"
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -123,6 +124,8 @@ std::string describe_truth(double estimate) {
   return "its extrapolated line force within an estimated " + sci(estimate) + " (relative)";
 }
 
+void cross_section(Report& report, const StoredComparison& c, const Scene& scene);
+
 void comparisons(Report& report, const ReportData& data) {
   if (data.comparisons.empty()) return;
   report.section("Accuracy on each scene",
@@ -182,6 +185,7 @@ void comparisons(Report& report, const ReportData& data) {
     if (!c.has_results) continue;
     const std::string scene = c.summary["scene"];
     const std::string name = slug(scene);
+    if (c.scene) cross_section(report, c, *c.scene);
     // Convergence history of the user's run.
     std::ostringstream overlap, energy;
     for (const HistoryEntry& h : c.user.history) {
@@ -234,6 +238,76 @@ void comparisons(Report& report, const ReportData& data) {
                     {{series(truth)}, {series(c.user.fibres[fibre])}});
     }
   }
+}
+
+/// A cross-section of a tow like the seed's Figure 4.14: the fibres cut by the slice at mid-length
+/// as circles of their radius at their deformed centres, the rim coloured by the bending moment
+/// there, and the contact forces of that slice as lines from each contact point (normal forces,
+/// scaled so that the largest is one radius long).
+void cross_section(Report& report, const StoredComparison& c, const Scene& scene) {
+  const Eigen::Vector3d axis = scene.contact.axis.normalized();
+  int k = 0;
+  axis.cwiseAbs().maxCoeff(&k);
+  Eigen::Vector3d g1 = Eigen::Vector3d::Unit((k + 1) % 3);
+  g1 = (g1 - g1.dot(axis) * axis).normalized();
+  const Eigen::Vector3d g2 = axis.cross(g1);
+  const double cos_parallel = std::cos(scene.contact.parallel_angle_deg * M_PI / 180.0);
+  std::ostringstream circles, forces;
+  std::map<std::string, std::size_t> index;
+  for (std::size_t i = 0; i < c.user.fibres.size(); ++i) index[c.user.fibres[i].id] = i;
+  int drawn = 0;
+  double largest_force = 0.0, radius = INFINITY, largest_radius = 0.0;
+  for (const FibreSpec& f : scene.fibres) {
+    const Eigen::Vector3d t = (f.end - f.start).normalized();
+    if (std::fabs(t.dot(axis)) < cos_parallel || !index.count(f.id)) continue;
+    const FibreResult& r = c.user.fibres[index[f.id]];
+    if (r.displacement.empty()) continue;
+    const std::size_t j = (r.displacement.size() - 1) / 2;
+    const double s = r.displacement.size() > 1 ? double(j) / (r.displacement.size() - 1) : 0.0;
+    const Eigen::Vector3d x = f.start + s * (f.end - f.start) + r.displacement[j];
+    const double M = j < r.moment.size() ? r.moment[j].norm() : 0.0;
+    circles << x.dot(g1) << " " << x.dot(g2) << " " << f.radius << " " << M << "\n";
+    radius = std::min(radius, f.radius);
+    largest_radius = std::max(largest_radius, f.radius);
+    ++drawn;
+  }
+  if (drawn < 3) return;
+  // The contact points nearest the middle slice, one per pair.
+  std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> points;
+  for (const ContactResult& pair : c.user.contacts) {
+    if (pair.kind == "point" || pair.points.empty()) continue;
+    const ContactPoint* nearest = &pair.points.front();
+    for (const ContactPoint& p : pair.points)
+      if (std::fabs(p.position - 0.5) < std::fabs(nearest->position - 0.5)) nearest = &p;
+    if (std::fabs(nearest->position - 0.5) > 0.05) continue;
+    points.push_back({nearest->point, nearest->force});
+    largest_force = std::max(largest_force, nearest->force.norm());
+  }
+  for (const auto& [at, force] : points) {
+    const Eigen::Vector3d d = force / largest_force * radius;
+    // The force on fibres[0] and its reaction, each from the contact point.
+    for (double sign : {1.0, -1.0})
+      forces << at.dot(g1) << " " << at.dot(g2) << " " << sign * d.dot(g1) << " "
+             << sign * d.dot(g2) << "\n";
+  }
+  const std::string scene_name = c.summary["scene"];
+  report.figure(
+      "cross_section_" + slug(scene_name),
+      "A cross-section of " + scene_name + " at mid-length after the iterative method (rule " +
+          c.user.rule +
+          "), drawn like the seed's Figure 4.14: the fibres at their deformed "
+          "centres, the rim coloured by the bending moment |M| there, and the contact forces of "
+          "that slice as lines (the largest, " +
+          sci(largest_force) + " N, one radius long).",
+      "set size ratio -1\nset offsets " + std::to_string(1.3 * largest_radius) + ", " +
+          std::to_string(1.3 * largest_radius) + ", " + std::to_string(1.3 * largest_radius) +
+          ", " + std::to_string(1.3 * largest_radius) +
+          "\nset xlabel 'cross-section axis 1 (mm)'\nset ylabel 'cross-section axis 2 (mm)'\nset "
+          "cblabel '|M| (N mm)'\nset rmargin 14\nset palette defined (0 '#2040c0', "
+          "0.5 '#20b040', 1 '#e02020')\nset key off\nset grid\nset format cb '%.1e'\nplot @DATA0@ "
+          "using 1:2:3:4 with circles lc palette lw 3 fs empty, @DATA1@ using 1:2:3:4 with vectors "
+          "nohead lw 3 lc rgb '#e0a000'",
+      {{circles.str()}, {forces.str().empty() ? "nan nan nan nan\n" : forces.str()}});
 }
 
 void slice_studies(Report& report, const ReportData& data) {

@@ -118,7 +118,13 @@ json result_to_json(const Result& r) {
   for (const FibreResult& f : r.fibres) {
     json d = json::array();
     for (const Eigen::Vector3d& u : f.displacement) d.push_back(vec(u));
-    j["fibres"].push_back({{"id", f.id}, {"displacement", d}});
+    json fibre = {{"id", f.id}, {"displacement", d}};
+    if (!f.moment.empty()) {
+      json m = json::array();
+      for (const Eigen::Vector2d& M : f.moment) m.push_back(json::array({M[0], M[1]}));
+      fibre["moment"] = m;
+    }
+    j["fibres"].push_back(std::move(fibre));
   }
   j["contacts"] = json::array();
   for (const ContactResult& c : r.contacts) {
@@ -179,6 +185,9 @@ Result result_from_json(const json& j, const std::string& source) {
       FibreResult fr;
       fr.id = f.at("id").get<std::string>();
       for (const json& u : f.at("displacement")) fr.displacement.push_back(to_vec(u));
+      if (f.contains("moment"))
+        for (const json& M : f.at("moment"))
+          fr.moment.emplace_back(M.at(0).get<double>(), M.at(1).get<double>());
       r.fibres.push_back(std::move(fr));
     }
     for (const json& c : j.at("contacts")) {

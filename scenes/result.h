@@ -31,6 +31,9 @@ struct FibreResult {
   std::string id;
   /// One [dx,dy,dz] (mm) per sample at s = 0, 1/(samples−1), …, 1.
   std::vector<Eigen::Vector3d> displacement;
+  /// The bending moments [M1, M2] (N·mm) in the fibre's planes (t, e1) and (t, e2) at the same
+  /// samples (may be empty in results written without them).
+  std::vector<Eigen::Vector2d> moment;
 };
 
 struct WallResult {

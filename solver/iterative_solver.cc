@@ -419,7 +419,8 @@ Result IterativeSolver::assemble(Clock::time_point start) {
   for (std::size_t f = 0; f < fibres_.size(); ++f) {
     FibreResult fr;
     fr.id = fibres_[f].id;
-    superposition_.fibre_field(static_cast<int>(f), force_on_a_, true, s, fr.displacement);
+    superposition_.fibre_field(static_cast<int>(f), force_on_a_, true, s, fr.displacement,
+                               &fr.moment);
     r.fibres.push_back(std::move(fr));
   }
 

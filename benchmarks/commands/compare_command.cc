@@ -70,10 +70,12 @@ int run_compare(const CompareArguments& args) {
     });
     const std::filesystem::path dir = std::filesystem::path(args.out) / scene.name;
     std::vector<std::pair<std::string, std::string>> files = {
+        {"scene", "scene.json"},
         {"user", "user.result.json"},
         {"converged", "converged.result.json"},
         {"reference_slices", "reference_slices.result.json"}};
     if (c.continuous) files.push_back({"reference_continuous", "reference_continuous.result.json"});
+    write_scene((dir / "scene.json").string(), scene);
     write_result((dir / "user.result.json").string(), c.user);
     write_result((dir / "converged.result.json").string(), c.converged);
     write_result((dir / "reference_slices.result.json").string(), c.slices);
