@@ -326,8 +326,8 @@ Result IterativeSolver::run() {
       out.precision(3);
       out << (verdict == DivergenceMonitor::Verdict::growth ? "residual grew without bound"
                                                             : "no progress: the update oscillates")
-          << " (c = " << step_ << " N/mm, estimate of 2/lambda_max(W) = " << 2.0 / lambda_max_
-          << " N/mm)";
+          << " (c = " << step_ << " N/mm; the step is stable below about " << 2.0 / lambda_max_
+          << " N/mm, 2/lambda_max of the compliance it steps on)";
       status = Status::diverged;
       criterion = verdict == DivergenceMonitor::Verdict::growth ? Criterion::growth
                                                                 : Criterion::oscillation;

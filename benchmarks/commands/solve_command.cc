@@ -104,9 +104,9 @@ int run_solve(const SolveArguments& args) {
     if (!args.quiet && terminal) std::cerr << "\r\033[K";
     if (!args.quiet) {
       std::cout << "  rule " << result.rule << ": c = " << result.c
-                << " N/mm per point contact (slices: c/n under rule seed), estimate of "
-                   "2/lambda_max(W) = "
-                << result.c_stable_limit << " N/mm\n";
+                << " N/mm per point contact (slices: c/n under rule seed), stable below about "
+                << result.c_stable_limit << " N/mm (2/lambda_max(W)"
+                << (result.rule == "seed" ? " of D^1/2 W D^1/2, D the slice weights" : "") << ")\n";
       std::istringstream report(brief_report(result));
       for (std::string line; std::getline(report, line);) std::cout << "  " << line << "\n";
       for (const std::string& w : result.warnings) std::cout << "  warning: " << w << "\n";
