@@ -23,6 +23,12 @@ double number(const json& j, const char* key) {
   return j.contains(key) && j[key].is_number() ? j[key].get<double>() : NAN;
 }
 
+/// The worst of the three errors of DESIGN §6 stored in `j`.
+double worst_error(const json& j) {
+  return std::max(
+      {number(j, "deflection_error"), number(j, "force_error"), number(j, "energy_error")});
+}
+
 std::string csv_cell(double x) {
   if (!std::isfinite(x)) return "";
   char text[32];
@@ -158,11 +164,7 @@ void comparisons(Report& report, const ReportData& data) {
                         seconds(user_time), seconds(truth_time)});
       continue;
     }
-    auto worst = [&](const char* key) {
-      const json& e = s[key];
-      return std::max(
-          {number(e, "deflection_error"), number(e, "force_error"), number(e, "energy_error")});
-    };
+    auto worst = [&](const char* key) { return worst_error(s[key]); };
     t.rows.push_back({scene, rule, sci(number(s, "deflection_error")),
                       sci(number(s, "force_error")), sci(number(s, "energy_error")),
                       sci(worst("iteration_error")), sci(worst("slicing_error")),
@@ -416,8 +418,7 @@ void tolerance_studies(Report& report, const ReportData& data) {
     std::map<std::string, std::vector<std::pair<double, double>>> methods, fronts;
     double exact_reference_time = NAN;  // a reference that is its own truth: error zero
     for (const json& p : s["points"]) {
-      const double worst = std::max(
-          {number(p, "deflection_error"), number(p, "force_error"), number(p, "energy_error")});
+      const double worst = worst_error(p);
       points.push_back({scene, p.value("method", ""), csv_cell(number(p, "parameter")),
                         csv_cell(number(p, "time_s")), std::to_string(p.value("iterations", 0L)),
                         p.value("status", ""), csv_cell(worst)});
@@ -510,8 +511,7 @@ void stability_studies(Report& report, const ReportData& data) {
       into << number(p, "c_over_c_crit") << " " << std::max(1L, p.value("iterations", 0L)) << "\n";
     }
     for (const json& p : s["stiffness"]) {
-      const double worst = std::max(
-          {number(p, "deflection_error"), number(p, "force_error"), number(p, "energy_error")});
+      const double worst = worst_error(p);
       stiff.rows.push_back({scene, sci(number(p, "stiffness_ratio")), p.value("method", ""),
                             p.value("status", ""), std::to_string(p.value("iterations", 0L)),
                             seconds(number(p, "time_s")),

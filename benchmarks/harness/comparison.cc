@@ -8,6 +8,14 @@
 
 namespace fibrecheck {
 
+double seed_stable_limit(const Scene& scene, const Solvers& solvers) {
+  Scene probe = scene;
+  probe.solver.rule = UpdateRule::seed;
+  probe.solver.c = 1.0;
+  probe.solver.max_iterations = 1;
+  return solvers.iterative(probe).c_stable_limit;
+}
+
 bool needs_continuous_reference(const Scene& scene) {
   if (!scene.walls.empty()) return true;
   const Eigen::Vector3d axis = scene.contact.axis.normalized();

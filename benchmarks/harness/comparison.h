@@ -54,6 +54,10 @@ Result ground_truth(const Scene& scene, const Solvers& solvers);
 /// run again reads it instead.
 Result stored_ground_truth(const Scene& scene, const Solvers& solvers, const std::string& folder);
 
+/// The seed rule's stable limit on the scene's c (its result's `c_stable_limit`), from one
+/// iteration of it.
+double seed_stable_limit(const Scene& scene, const Solvers& solvers);
+
 /// Whether the scene has line or wall contacts to refine (tow fibres in pairs, or walls).
 bool needs_continuous_reference(const Scene& scene);
 

@@ -17,15 +17,6 @@ std::string text(double x) {
   return out.str();
 }
 
-/// The seed's stable limit on the scene's c, from one iteration of it.
-double seed_limit(const Scene& scene, const Solvers& solvers) {
-  Scene probe = scene;
-  probe.solver.rule = UpdateRule::seed;
-  probe.solver.c = 1.0;
-  probe.solver.max_iterations = 1;
-  return solvers.iterative(probe).c_stable_limit;
-}
-
 Scene stiffer(const Scene& scene, double ratio) {
   Scene s = scene;
   for (std::size_t i = 1; i < s.fibres.size(); i += 2) s.fibres[i].youngs_modulus *= ratio;
@@ -60,7 +51,7 @@ std::vector<StabilityStudyScene> run_stability_study(const std::vector<Scene>& s
   for (const Scene& scene : scenes) {
     StabilityStudyScene study;
     study.scene = scene.name;
-    study.c_crit = seed_limit(scene, solvers);
+    study.c_crit = seed_stable_limit(scene, solvers);
     for (double f : options.fractions) {
       const nlohmann::json& p =
           run_point(scene.name + "/c/" + text(f), scene.name + ", c = " + text(f) + " c_crit", [&] {
@@ -108,7 +99,7 @@ std::vector<StabilityStudyScene> run_stability_study(const std::vector<Scene>& s
         const nlohmann::json& p = run_point(base + rule.label, s.name + ", " + rule.label, [&] {
           Scene t = s;
           t.solver.rule = rule.rule;
-          if (rule.rule == UpdateRule::seed) t.solver.c = 0.5 * seed_limit(s, solvers);
+          if (rule.rule == UpdateRule::seed) t.solver.c = 0.5 * seed_stable_limit(s, solvers);
           t.solver.max_iterations = options.max_iterations;
           const Result r = solvers.iterative(t);
           nlohmann::json j = to_json(truth().status == Status::converged

@@ -88,15 +88,7 @@ std::vector<ToleranceStudyScene> run_tolerance_study(const std::vector<Scene>& s
       study.truth_error_estimate = truth.finite_elements->line_force_error_estimate;
     double radius = INFINITY;
     for (const FibreSpec& f : scene.fibres) radius = std::min(radius, f.radius);
-    // The seed's stable limit, from one iteration of it.
-    double c_limit = NAN;
-    if (!options.seed_fractions.empty()) {
-      Scene probe = scene;
-      probe.solver.rule = UpdateRule::seed;
-      probe.solver.c = 1.0;
-      probe.solver.max_iterations = 1;
-      c_limit = solvers.iterative(probe).c_stable_limit;
-    }
+    const double c_limit = options.seed_fractions.empty() ? NAN : seed_stable_limit(scene, solvers);
     struct Rule {
       std::string label;
       UpdateRule rule;
