@@ -258,7 +258,7 @@ ReferenceSolver::ReferenceSolver(const Scene& scene, const ReferenceOptions& opt
       tolerance_(scene.overlap_tolerance()),
       detector_(fibres_, scene, candidate_margin(fibres_),
                 options.line_contact == LineContact::continuous
-                    ? LineQuadrature::gauss(scene.contact.slices << options.refine)
+                    ? LineQuadrature::gauss(continuous_cells(scene, options.refine))
                     : LineQuadrature::slices(scene.contact.slices)),
       grid_u_(fibres_.size(),
               std::vector<Eigen::Vector3d>(detector_.grid().size(), Eigen::Vector3d::Zero())) {
@@ -391,7 +391,7 @@ void ReferenceSolver::collect_stations() {
 
 MeshOptions ReferenceSolver::mesh_options() const {
   MeshOptions mesh;
-  mesh.size_per_slice = std::ldexp(1.0, -options_.refine);
+  mesh.size_per_slice = std::ldexp(1.0, -std::max(options_.refine, 0));
   mesh.contact_stations = stations_;
   mesh.sample_stations.assign(fibres_.size(), sample_s_);
   return mesh;
@@ -536,9 +536,12 @@ void ReferenceSolver::solve() {
   std::vector<char> excluded(n, 0);
   for (Eigen::Index k = 0; k < n; ++k) excluded[k] = compliance[k] <= immovable ? 1 : 0;
   // Overlaps are decided far below the scene's tolerance, but not below the round-off of the
-  // finite-element data (about 1e-9 of the largest overlap under the loads).
+  // finite-element data (about 1e-14 of the largest overlap under the loads, with MUMPS's
+  // iterative refinement). A coarser threshold ruins a fine continuous line contact: a line force
+  // is barely determined by the overlaps (a force near a pinned end moves nothing), so the
+  // active set would end with only every other Gauss point pushing and the line force 3e-3 low.
   threshold_ =
-      std::max(1e-6 * tolerance_, 1e-9 * (d0_.size() > 0 ? d0_.cwiseAbs().maxCoeff() : 0.0));
+      std::max(1e-6 * tolerance_, 1e-13 * (d0_.size() > 0 ? d0_.cwiseAbs().maxCoeff() : 0.0));
   pushing_.resize(n, 0);
   int iterations = 0;
   bool singular = false;
@@ -783,6 +786,21 @@ Result ReferenceSolver::run() {
 
 }  // namespace
 
+int continuous_cells(const Scene& scene, int K) {
+  const int n = scene.contact.slices;
+  if (K >= 0) return n << K;
+  if (K < coarsest_refinement(scene))
+    throw std::invalid_argument("continuous_cells: refinement " + std::to_string(K) +
+                                " below the coarsest for " + std::to_string(n) + " slices");
+  return n >> -K;
+}
+
+int coarsest_refinement(const Scene& scene) {
+  int K = 0;
+  for (int n = scene.contact.slices; K > -2 && n % 2 == 0 && n / 2 >= 4; n /= 2) --K;
+  return K;
+}
+
 int finest_refinement(const Scene& scene, long points) {
   int K = 0;
   while ((2L * scene.contact.slices << (K + 1)) <= points) ++K;
@@ -825,7 +843,7 @@ Result solve_reference(const Scene& scene, const ReferenceOptions& options) {
   std::map<PairKey, double> previous_pairs;
   Result r;
   double order = NAN, estimate = NAN;
-  for (int K = options.refine; K <= options.max_refine; ++K) {
+  for (int K = std::min(options.refine, coarsest_refinement(scene)); K <= options.max_refine; ++K) {
     once.refine = K;
     ReferenceSolver solver(scene, once);
     r = solver.run();

@@ -21,12 +21,13 @@ enum class LineContact {
 struct ReferenceOptions {
   LineContact line_contact = LineContact::slices;
   /// Refinements: elements (and in continuous mode the Gauss cells) are 2^refine times smaller.
+  /// In continuous mode it may be negative, down to coarsest_refinement(scene): n/2^-K cells.
   int refine = 0;
-  /// Continuous mode: refine once more (from `refine`) until the summed line and wall contact
-  /// force, extrapolated (Richardson, with the order observed on the last three refinements), is
-  /// known to `refinement_tolerance` (relative; two successive extrapolations agree), at most up
-  /// to `max_refine`. Line and wall pairs then carry their extrapolated force, and the result its
-  /// order and error estimate.
+  /// Continuous mode: refine once more (from the coarsest refinement, or `refine` if lower) until
+  /// the summed line and wall contact force, extrapolated (Richardson, with the order observed on
+  /// the last three refinements), is known to `refinement_tolerance` (relative; two successive
+  /// extrapolations agree), at most up to `max_refine`. Line and wall pairs then carry their
+  /// extrapolated force, and the result its order and error estimate.
   bool refine_until_converged = false;
   double refinement_tolerance = 1e-4;
   int max_refine = 8;
@@ -61,6 +62,16 @@ struct ReferenceOptions {
 /// shared out among the processes, each meshes and solves its own, and every process ends with the
 /// same result.
 Result solve_reference(const Scene& scene, const ReferenceOptions& options = {});
+
+/// The Gauss cells of the continuous line contact at refinement K: n·2^K for the scene's n slices.
+int continuous_cells(const Scene& scene, int K);
+
+/// The coarsest refinement K ≤ 0 of the continuous line contact: n/2^-K cells, whole, at least 4
+/// and at most 4 times fewer than the scene's slices. The line force converges at first order, so
+/// its extrapolation needs four refinements; starting them below n keeps the finest one small
+/// enough that its compliance matrix (condition growing with the fourth power of the points: a
+/// smooth beam kernel) can still be solved to the round-off of the finite elements.
+int coarsest_refinement(const Scene& scene);
 
 /// The finest refinement K whose continuous line contact, 2·n·2^K Gauss points along a line for the
 /// scene's n slices, stays within `points` (the influence matrices are dense per fibre: memory and

@@ -31,6 +31,14 @@ ReferenceOptions reference_options(const FemArguments& args, const Scene& scene)
   const bool fixed = !args.refine.empty() && args.refine != "auto";
   options.refine_until_converged = args.refine == "auto" || (args.refine.empty() && continuous);
   options.refine = fixed ? std::stoi(args.refine) : 0;
+  if (options.refine < 0 && (!continuous || options.refine < coarsest_refinement(scene)))
+    throw InputError("command line", "--refine",
+                     continuous ? "the coarsest continuous line contact for " +
+                                      std::to_string(scene.contact.slices) + " slices is K = " +
+                                      std::to_string(coarsest_refinement(scene)) +
+                                      " (n/2^-K cells, whole and at least 4)"
+                                : "a negative refinement coarsens the continuous line contact "
+                                  "only: use it with --line-contact continuous");
   // Contacts are told apart by their quadrature point's index, which has 20 bits.
   if (continuous && fixed && (2LL * scene.contact.slices << options.refine) >= (1LL << 20))
     throw InputError("command line", "--refine",
@@ -101,18 +109,20 @@ CLI::App* add_fem_command(CLI::App& app, FemArguments& args) {
                   "Degree of the beam elements: 2 (the default: exact at the nodes) or 1 (linear, "
                   "to study the elements themselves)")
       ->check(CLI::Range(1, 2));
-  fem->add_option("--refine", args.refine,
-                  "Refinements K (0-12): elements (and continuous-mode cells) 2^K times smaller; "
-                  "auto (the default in continuous mode): refine until the line force settles")
+  fem->add_option(
+         "--refine", args.refine,
+         "Refinements K (0-12): elements (and continuous-mode cells) 2^K times smaller; down "
+         "to -2 in continuous mode (n/4 cells); auto (the default in continuous mode): "
+         "refine from the coarsest until the line force settles")
       ->check([](const std::string& value) -> std::string {
         if (value == "auto") return "";
         try {
           std::size_t used = 0;
           const int k = std::stoi(value, &used);
-          if (used == value.size() && k >= 0 && k <= 12) return "";
+          if (used == value.size() && k >= -2 && k <= 12) return "";
         } catch (const std::exception&) {
         }
-        return "--refine: expected a whole number from 0 to 12, or auto";
+        return "--refine: expected a whole number from -2 to 12, or auto";
       });
   fem->add_option("--vtk", args.vtk,
                   "ParaView file: .vtu = the finite-element beams (w, M, displacement), .vtp = "

@@ -218,6 +218,11 @@ TEST_F(Cli, FemRejectsBadInputWithoutWritingAnything) {
         Case{"fem " + scene("two_fibres_crossing") + " --line-contact sideways" + out,
              "--line-contact"},
         Case{"fem " + scene("two_fibres_crossing") + " --refine -1" + out, "--refine"},
+        Case{"fem " + scene("two_fibres_crossing") + " --line-contact continuous --refine -3" + out,
+             "--refine"},
+        Case{"fem " + scene("two_fibres_crossing") +
+                 " --line-contact continuous --refine -2 --slices 6" + out,
+             "coarsest continuous line contact for 6 slices is K = 0"},
         Case{"fem " + scene("two_fibres_crossing") + " --vtk " + dir_ + "b.vtk" + out, "--vtk"},
         Case{"fem " + scene("two_fibres_crossing") + " --refine auto" + out,
              "--line-contact continuous"}}) {
