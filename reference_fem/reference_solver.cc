@@ -19,13 +19,16 @@
 #include <sstream>
 #include <tuple>
 
+#include "ambiguous_sides.h"
 #include "beam_model.h"
 #include "carry_over.h"
 #include "contact_detection.h"
 #include "contact_results.h"
 #include "fibre.h"
 #include "fibre_mesh.h"
+#include "input_error.h"
 #include "unresolvable_overlap.h"
+#include "validity.h"
 
 namespace fibrecheck {
 
@@ -71,10 +74,20 @@ bool active_set_solve(const Eigen::SparseMatrix<double>& W, const Eigen::VectorX
       for (Eigen::Index j = 0; j < m; ++j) Wss(i, j) = W.coeff(index[i], index[j]);
     }
     const Eigen::LDLT<Eigen::MatrixXd> ldlt(Wss);
-    const Eigen::VectorXd zs = ldlt.solve(ds);
+    Eigen::VectorXd zs = ldlt.solve(ds);
     if (ldlt.info() != Eigen::Success || !zs.allFinite() ||
-        ldlt.vectorD().minCoeff() <= 1e-14 * ldlt.vectorD().maxCoeff())
-      return false;
+        ldlt.vectorD().minCoeff() <= 1e-14 * ldlt.vectorD().maxCoeff()) {
+      // Contacts that constrain the same motion (several pairs meeting at one point): W_SS is
+      // singular. Regularised by 1e-10 of its diagonal it has an answer: where the overlaps are
+      // consistent, the forces that close them to 1e-10; where they are not (the set asks one
+      // fibre to move two ways), forces growing along the null direction, which the step back
+      // to feasibility turns into dropping the contact that blocks.
+      const double epsilon = 1e-10 * Wss.diagonal().cwiseAbs().maxCoeff();
+      const Eigen::LDLT<Eigen::MatrixXd> regularised(Wss +
+                                                     epsilon * Eigen::MatrixXd::Identity(m, m));
+      zs = regularised.solve(ds);
+      if (regularised.info() != Eigen::Success || !zs.allFinite()) return false;
+    }
     for (Eigen::Index i = 0; i < m; ++i) z[index[i]] = zs[i];
     return true;
   };
@@ -379,6 +392,22 @@ void ReferenceSolver::collect_stations() {
                list.end());
     offset_[f + 1] = offset_[f] + list.size();
     g_offset_[f + 1] = g_offset_[f] + list.size() * list.size();
+  }
+  // The influence matrices are dense per fibre and every process holds all of them: refuse what
+  // would not fit rather than fail in the middle of the assembly.
+  constexpr double kMaxInfluenceBytes = 4.0 * (1 << 30);
+  const double bytes = 8.0 * static_cast<double>(g_offset_.back());
+  if (bytes > kMaxInfluenceBytes) {
+    std::size_t widest = 0;
+    for (std::size_t f = 0; f < fibres_.size(); ++f)
+      if (stations_[f].size() > stations_[widest].size()) widest = f;
+    std::ostringstream out;
+    out.precision(3);
+    out << "the reference's dense influence matrices would take " << bytes / (1 << 30)
+        << " GiB (fibre " << fibres_[widest].id << " alone has " << stations_[widest].size()
+        << " contact stations), above its limit of 4 GiB: give the reference fewer slices "
+        << "(fibrecheck fem --slices) or a coarser continuous line contact";
+    throw InputError(scene_.source, "contact.slices", out.str());
   }
   station_a_.resize(contacts_.size());
   station_b_.resize(contacts_.size());
@@ -704,6 +733,8 @@ Result ReferenceSolver::run() {
   r.criterion = Criterion::max_iterations;
   deform_under_scene_loads();
   detect();
+  const std::vector<std::string> ambiguous =
+      ambiguous_side_warnings(contacts_, fibres_, scene_.walls);
   int outer = 0;
   for (outer = 1; outer <= options_.max_outer_iterations; ++outer) {
     make_grid();
@@ -739,6 +770,8 @@ Result ReferenceSolver::run() {
     setup_system();
   }
   output_results(r);
+  r.warnings.insert(r.warnings.begin(), ambiguous.begin(), ambiguous.end());
+  assess_validity(r, fibres_);
   r.iterations = std::min(outer, options_.max_outer_iterations);
   r.finite_elements->active_set_iterations = active_set_iterations_;
   r.finite_elements->unknowns = static_cast<long>(

@@ -101,6 +101,8 @@ json result_to_json(const Result& r) {
   j["c"] = r.c;
   j["c_stable_limit"] = r.c_stable_limit;
   j["axial_load_dropped"] = r.axial_load_dropped;
+  j["max_deflection_over_radius"] = r.max_deflection_over_radius;
+  j["max_slope"] = r.max_slope;
   if (r.finite_elements) {
     j["complementarity_residual"] = r.finite_elements->complementarity_residual;
     j["active_set_iterations"] = r.finite_elements->active_set_iterations;
@@ -169,6 +171,8 @@ Result result_from_json(const json& j, const std::string& source) {
     r.c = j.value("c", 0.0);
     r.c_stable_limit = j.value("c_stable_limit", 0.0);
     r.axial_load_dropped = j.value("axial_load_dropped", 0.0);
+    r.max_deflection_over_radius = j.value("max_deflection_over_radius", 0.0);
+    r.max_slope = j.value("max_slope", 0.0);
     if (j.contains("unknowns")) {
       FiniteElementFigures& figures = r.finite_elements.emplace();
       figures.complementarity_residual = j.value("complementarity_residual", 0.0);

@@ -109,6 +109,10 @@ struct Result {
   double c = 0.0;                    ///< N/mm, step used (per point contact)
   double c_stable_limit = 0.0;       ///< N/mm, estimate of 2/λmax(W)
   double axial_load_dropped = 0.0;   ///< N, sum of |axial parts| dropped by the beam model
+  /// Validity of small-deflection beam theory: the largest transverse displacement over the
+  /// fibre's radius and the largest slope (rad) of any fibre, from the result's samples.
+  double max_deflection_over_radius = 0.0;
+  double max_slope = 0.0;
   /// Present in results of the finite-element reference.
   std::optional<FiniteElementFigures> finite_elements;
   std::vector<std::string> stages;

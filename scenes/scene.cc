@@ -9,123 +9,15 @@
 #include <sstream>
 
 #include "atomic_file.h"
+#include "expected_outcome.h"
 #include "input_error.h"
+#include "json_reader.h"
 
 namespace fibrecheck {
 
 using nlohmann::json;
 
 namespace {
-
-/// A view of one JSON object at a path (`fibres[2]`): typed, range-checked reads that name the
-/// field on failure, and a final check that no key was left unread (a typo must not silently
-/// change the physics).
-class ObjectReader {
- public:
-  ObjectReader(const json& object, std::string path, const std::string& file)
-      : object_(object), path_(std::move(path)), file_(file) {
-    if (!object_.is_object()) fail(path_, "must be a JSON object");
-  }
-
-  [[noreturn]] void fail(const std::string& field, const std::string& reason) const {
-    throw InputError(file_, field, reason);
-  }
-
-  std::string field(const std::string& key) const {
-    return path_.empty() ? key : path_ + "." + key;
-  }
-
-  bool has(const std::string& key) {
-    used_.insert(key);
-    return object_.contains(key) && !object_.at(key).is_null();
-  }
-
-  const json& at(const std::string& key) {
-    used_.insert(key);
-    if (!object_.contains(key)) fail(field(key), "is required");
-    return object_.at(key);
-  }
-
-  double number(const std::string& key, double fallback) {
-    return has(key) ? number(key) : fallback;
-  }
-
-  double number(const std::string& key) {
-    const json& value = at(key);
-    if (!value.is_number()) fail(field(key), "must be a number, got " + type_name(value));
-    const double x = value.get<double>();
-    if (!std::isfinite(x)) fail(field(key), "must be a finite number");
-    return x;
-  }
-
-  long integer(const std::string& key, long fallback) {
-    if (!has(key)) return fallback;
-    const json& value = at(key);
-    if (value.is_number_integer()) return value.get<long>();
-    if (value.is_number_float()) {
-      const double x = value.get<double>();
-      if (std::isfinite(x) && x == std::floor(x) && std::fabs(x) < 9e15)
-        return static_cast<long>(x);
-    }
-    fail(field(key), "must be a whole number, got " + value.dump());
-  }
-
-  std::string string(const std::string& key) {
-    const json& value = at(key);
-    if (!value.is_string()) fail(field(key), "must be a string, got " + type_name(value));
-    return value.get<std::string>();
-  }
-
-  std::string string(const std::string& key, const std::string& fallback) {
-    return has(key) ? string(key) : fallback;
-  }
-
-  Eigen::Vector3d vector3(const std::string& key) {
-    const json& value = at(key);
-    if (!value.is_array() || value.size() != 3)
-      fail(field(key), "must be an array of three numbers, got " + value.dump());
-    Eigen::Vector3d v;
-    for (int i = 0; i < 3; ++i) {
-      if (!value[i].is_number())
-        fail(field(key) + "[" + std::to_string(i) + "]",
-             "must be a number, got " + type_name(value[i]));
-      v[i] = value[i].get<double>();
-      if (!std::isfinite(v[i]))
-        fail(field(key) + "[" + std::to_string(i) + "]", "must be a finite number");
-    }
-    return v;
-  }
-
-  Eigen::Vector3d vector3(const std::string& key, const Eigen::Vector3d& fallback) {
-    return has(key) ? vector3(key) : fallback;
-  }
-
-  const json& array(const std::string& key) {
-    const json& value = at(key);
-    if (!value.is_array()) fail(field(key), "must be an array, got " + type_name(value));
-    return value;
-  }
-
-  /// Rejects keys that were never asked for.
-  void finish() const {
-    for (auto it = object_.begin(); it != object_.end(); ++it)
-      if (!used_.count(it.key())) fail(field(it.key()), "unknown key");
-  }
-
-  static std::string type_name(const json& value) {
-    return std::string(value.type_name()) + (value.is_primitive() ? " " + value.dump() : "");
-  }
-
- private:
-  const json& object_;
-  std::string path_;
-  const std::string& file_;
-  std::set<std::string> used_;
-};
-
-std::string indexed(const std::string& array, std::size_t i) {
-  return array + "[" + std::to_string(i) + "]";
-}
 
 void require_positive(ObjectReader& reader, const std::string& key, double value) {
   if (!(value > 0.0)) reader.fail(reader.field(key), "must be positive, got " + json(value).dump());
@@ -232,6 +124,7 @@ Scene scene_from_json(const json& document, const std::string& source) {
   top.string("description", "");
   if (top.has("generator") && !top.at("generator").is_object())
     top.fail("generator", "must be a JSON object");
+  if (top.has("expected")) scene.expected = read_expected_outcome(top.at("expected"), source);
 
   const json& fibres = top.array("fibres");
   if (fibres.empty()) top.fail("fibres", "must list at least one fibre");
@@ -460,6 +353,7 @@ json scene_to_json(const Scene& scene) {
       {"energy_window", scene.solver.energy_window},
       {"max_iterations", scene.solver.max_iterations}};
   j["output"] = {{"samples", scene.output.samples}};
+  if (scene.expected) j["expected"] = to_json(*scene.expected);
   return j;
 }
 
@@ -526,7 +420,12 @@ std::string scene_format_help() {
       << "\n"
          "  output\n"
          "    samples                     displacement samples per fibre   default: "
-      << d.output.samples << "\n";
+      << d.output.samples
+      << "\n"
+         "  expected                      optional, never read by the solvers: what the scene\n"
+         "                                must give (status per solver, closed-form forces and\n"
+         "                                deflections with tolerances), judged by the tests and\n"
+         "                                the stability study; see scenes/extreme/\n";
   return out.str();
 }
 

@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "expected_outcome.h"
+
 namespace fibrecheck {
 
 /// A fibre: a straight, initially unstressed centreline pinned at `start` and `end` (seed §4.3.1).
@@ -49,7 +51,7 @@ enum class UpdateRule { seed, automatic, accelerated };
 
 /// Force update and stopping (seed §4.3.2, §4.3.6).
 struct SolverSettings {
-  UpdateRule rule = UpdateRule::automatic;
+  UpdateRule rule = UpdateRule::accelerated;
   std::optional<double> c;  ///< step c of P' = P + c·d, N/mm (rule `seed` only)
   /// t_d, mm; default 1e-5 of the smallest fibre radius.
   std::optional<double> overlap_tolerance;
@@ -70,6 +72,8 @@ struct Scene {
   ContactSettings contact;
   SolverSettings solver;
   OutputSettings output;
+  /// What the scene must give, where it is known (catalogue scenes); never read by the solvers.
+  std::optional<ExpectedOutcome> expected;
   std::string source;  ///< file it was read from (for messages)
 
   /// Index of the fibre with this id, or -1.

@@ -49,7 +49,7 @@ DivergenceMonitor::Verdict DivergenceMonitor::observe(long iteration, double res
     best_ = residual;
     best_iteration_ = iteration;
   }
-  const long patience = std::max(5000L, iteration / 5);
+  const long patience = unstable_step_ ? 200L : std::max(5000L, iteration / 5);
   if (iteration - best_iteration_ > patience) return Verdict::stalled;
   return Verdict::fine;
 }

@@ -41,9 +41,14 @@ class DivergenceMonitor {
   enum class Verdict { fine, growth, stalled };
   Verdict observe(long iteration, double residual);
   void reset() { reference_ = -1.0; }
+  /// A step known to exceed its stable limit (c·λmax(W) > 2) is judged after 200 iterations
+  /// without progress instead of max(5000, iteration/5): the linear part of the update then grows
+  /// or oscillates at once, and waiting only delays the answer.
+  void set_unstable_step(bool unstable) { unstable_step_ = unstable; }
 
  private:
   double tolerance_;
+  bool unstable_step_ = false;
   double reference_ = -1.0;
   double best_ = 0.0;
   long best_iteration_ = 0;

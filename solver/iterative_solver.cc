@@ -8,6 +8,7 @@
 #include <sstream>
 #include <unordered_map>
 
+#include "ambiguous_sides.h"
 #include "carry_over.h"
 #include "compliance_operator.h"
 #include "contact_description.h"
@@ -18,6 +19,7 @@
 #include "friction.h"
 #include "superposition.h"
 #include "unresolvable_overlap.h"
+#include "validity.h"
 
 namespace fibrecheck {
 
@@ -106,7 +108,6 @@ class IterativeSolver {
   double step_ = 0.0;
   double exact_energy_ = 0.0;
   Residuals residuals_;
-  int held_normals_ = 0;
   std::vector<std::string> warnings_;
   std::vector<HistoryEntry> history_;
 };
@@ -155,8 +156,6 @@ void IterativeSolver::detect_contacts() {
   grid_u_at_detection_ = grid_u_;
   if (unchanged) return;
   superposition_.attach(contacts_);
-  held_normals_ = 0;
-  for (const Contact& c : contacts_) held_normals_ += c.normal_held ? 1 : 0;
   gather_forces();
   estimate_step();
 }
@@ -180,6 +179,7 @@ void IterativeSolver::estimate_step() {
     step_ = *options_.c;
   else
     step_ = lambda_max_ > 0.0 ? 1.0 / lambda_max_ : 0.0;
+  divergence_.set_unstable_step(step_ * lambda_max_ > 2.0);
 }
 
 std::optional<std::string> IterativeSolver::find_unresolvable() const {
@@ -259,15 +259,7 @@ bool IterativeSolver::record_history(long iteration) const {
 Result IterativeSolver::run() {
   const auto start = Clock::now();
   detect_contacts();
-  for (const Contact& c : contacts_) {
-    const double r =
-        std::min(fibres_[c.a].radius, c.kind == ContactKind::wall ? INFINITY : fibres_[c.b].radius);
-    if (c.overlap > r) {
-      warnings_.push_back("initial overlap above the radius between " +
-                          describe(c, fibres_, scene_.walls) + ": the contact side is ambiguous");
-      break;
-    }
-  }
+  warnings_ = ambiguous_side_warnings(contacts_, fibres_, scene_.walls);
   if (auto why = find_unresolvable()) {
     evaluate();
     Result result = assemble(start);
@@ -370,6 +362,11 @@ Result IterativeSolver::run() {
     out << "stopped after " << iteration << " iterations with overlap residual "
         << residuals_.overlap << " mm and gap-force residual " << residuals_.gap_force
         << " mm (tolerance " << options_.overlap_tolerance << " mm)";
+    if (options_.rule != UpdateRule::accelerated)
+      out << "; rule accelerated needs far fewer iterations where the compliance is "
+             "ill-conditioned (line contacts near supports, tows)";
+    else
+      out << "; raise solver.max_iterations or loosen solver.overlap_tolerance";
     message = out.str();
   }
   Result result = assemble(start);
@@ -395,10 +392,6 @@ Result IterativeSolver::assemble(Clock::time_point start) {
   r.c_stable_limit = lambda_max_ > 0.0 ? 2.0 / lambda_max_ : 0.0;
   r.axial_load_dropped = superposition_.axial_load_dropped(contacts_, force_on_a_);
   r.warnings = warnings_;
-  if (held_normals_ > 0)
-    r.warnings.push_back(std::to_string(held_normals_) +
-                         " contacts whose undeformed centres nearly coincide: their normal was "
-                         "chosen, not measured, and the contact side is ambiguous");
   if (scene_.contact.friction > 0.0)
     r.warnings.push_back(
         "contact normals do not turn (they are those of the undeformed fibres), so the friction "
@@ -427,6 +420,7 @@ Result IterativeSolver::assemble(Clock::time_point start) {
   r.contacts = contact_results(contacts_, fibres_, scene_.walls, force_on_a_, u_a_, u_b_);
   r.walls = wall_results(contacts_, fibres_, scene_.walls);
   r.history = history_;
+  assess_validity(r, fibres_);
   r.wall_time_s = seconds_since(start);
   return r;
 }

@@ -23,7 +23,7 @@ struct IterationProgress {
 /// Options of the iterative solver. Defaults come from the scene (`from_scene`); the command line
 /// may override rule, c and slices.
 struct SolverOptions {
-  UpdateRule rule = UpdateRule::automatic;
+  UpdateRule rule = UpdateRule::accelerated;
   std::optional<double> c;       ///< N/mm; required by rule seed
   double overlap_tolerance = 0;  ///< t_d, mm
   double energy_tolerance = 0;   ///< t_U, N·mm; 0 = off

@@ -42,7 +42,7 @@ TEST(Scene, EveryFieldButFibresHasADefault) {
   EXPECT_TRUE(s.walls.empty());
   EXPECT_EQ(s.contact.slices, d.contact.slices);
   EXPECT_EQ(s.contact.axis, d.contact.axis);
-  EXPECT_EQ(s.solver.rule, UpdateRule::automatic);
+  EXPECT_EQ(s.solver.rule, UpdateRule::accelerated);
   EXPECT_FALSE(s.solver.c.has_value());
   EXPECT_DOUBLE_EQ(s.overlap_tolerance(), 1e-5 * 0.01);  // 1e-5 of the smallest radius
   EXPECT_EQ(s.solver.max_iterations, d.solver.max_iterations);

@@ -65,7 +65,7 @@ TEST_F(Cli, SolveWritesResultAndVtkAndExitsZero) {
                         "r.json --vtk " + dir_ + "r.vtp");
   EXPECT_EQ(r.code, 0) << r.err;
   EXPECT_NE(r.out.find("status converged"), std::string::npos) << r.out;
-  EXPECT_NE(r.out.find("rule auto"), std::string::npos);
+  EXPECT_NE(r.out.find("rule accelerated"), std::string::npos);  // the default
   EXPECT_NE(r.out.find("2/lambda_max(W)"), std::string::npos);
   EXPECT_EQ(json::parse(slurp(dir_ + "r.json"))["status"], "converged");
   EXPECT_TRUE(fs::exists(dir_ + "r.vtp"));

@@ -145,3 +145,33 @@ TEST(UnresolvableOverlap, OverlappingPinnedSupportsAreFoundInADetectedScene) {
 
 }  // namespace
 }  // namespace fibrecheck
+
+namespace fibrecheck {
+namespace {
+
+// Supports closer than the sum of the radii overlap where neither fibre can move, though no
+// slice or contact point sits there (slices lie at the midpoints of their intervals).
+TEST(OverlappingSupports, CoincidentFibresAndSharedSupportsAreFound) {
+  Scene same;
+  same.fibres = {testing::fibre("A", {0, 0, 0}, {1, 0, 0}),
+                 testing::fibre("B", {0, 0, 0}, {1, 0, 0})};
+  const auto why = find_overlapping_supports(make_fibres(same), 1e-7);
+  ASSERT_TRUE(why.has_value());
+  EXPECT_NE(why->find("overlap 0.02 mm between fibres A and B at s = 0 of A (s = 0 of B)"),
+            std::string::npos)
+      << *why;
+  // Crossing right above one support, but the other fibre's supports are far: A's support does
+  // not overlap B's, so B can yield there.
+  Scene one;
+  one.fibres = {testing::fibre("A", {0, 0, 0}, {1, 0, 0}),
+                testing::fibre("B", {0, -0.5, 0.0199}, {0, 0.5, 0.0199})};
+  EXPECT_FALSE(find_overlapping_supports(make_fibres(one), 1e-7).has_value());
+  // Supports that just touch, or overlap by less than the tolerance, are fine.
+  Scene touching;
+  touching.fibres = {testing::fibre("A", {0, 0, 0}, {1, 0, 0}),
+                     testing::fibre("B", {0, 0, 0.02}, {1, 0, 0.02})};
+  EXPECT_FALSE(find_overlapping_supports(make_fibres(touching), 1e-7).has_value());
+}
+
+}  // namespace
+}  // namespace fibrecheck

@@ -1,0 +1,51 @@
+#pragma once
+
+// The catalogue of extreme scenes (scenes/extreme/): every file, and what every result must be
+// whatever its status — finite.
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "result.h"
+
+namespace fibrecheck::testing {
+
+inline std::vector<std::string> extreme_catalogue() {
+  std::vector<std::string> names;
+  for (const auto& entry : std::filesystem::directory_iterator(FIBRECHECK_SCENES_DIR "/extreme"))
+    if (entry.path().extension() == ".json") names.push_back(entry.path().stem().string());
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+inline std::string extreme_scene_path(const std::string& name) {
+  return FIBRECHECK_SCENES_DIR "/extreme/" + name + ".json";
+}
+
+/// The first non-finite number in a result, or "" when all are finite.
+inline std::string first_non_finite(const Result& r) {
+  auto bad = [](double x) { return !std::isfinite(x); };
+  for (double x : {r.strain_energy, r.strain_energy_exact, r.max_overlap, r.gap_force_residual, r.c,
+                   r.c_stable_limit, r.axial_load_dropped, r.max_deflection_over_radius,
+                   r.max_slope, r.wall_time_s})
+    if (bad(x)) return "a scalar field";
+  for (const FibreResult& f : r.fibres) {
+    for (const Eigen::Vector3d& u : f.displacement)
+      if (!u.allFinite()) return "a displacement of " + f.id;
+    for (const Eigen::Vector2d& m : f.moment)
+      if (!m.allFinite()) return "a moment of " + f.id;
+  }
+  for (const ContactResult& c : r.contacts) {
+    if (bad(c.total_force)) return "a contact force";
+    for (const ContactPoint& p : c.points)
+      if (bad(p.position) || !p.force.allFinite()) return "a contact point";
+  }
+  for (const HistoryEntry& h : r.history)
+    if (bad(h.max_overlap) || bad(h.strain_energy)) return "the history";
+  return "";
+}
+
+}  // namespace fibrecheck::testing

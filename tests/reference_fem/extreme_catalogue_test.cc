@@ -1,0 +1,70 @@
+// The extreme catalogue (scenes/extreme/) through the reference: the status the scene expects
+// (`refused` = the scene is beyond its reach, said as bad input), its closed forms within their
+// tolerances, finite numbers whatever the status; and where both solvers converge, the same
+// deflections as the iterative solver to 1e-4 of the largest (both solve the same contact model;
+// the scenes' tolerances put the iterative solver's overlaps far below that).
+
+#include "extreme_catalogue.h"
+
+#include <deal.II/base/mpi.h>
+#include <gtest/gtest.h>
+
+#include "expected_outcome.h"
+#include "input_error.h"
+#include "iterative_solver.h"
+#include "reference_solver.h"
+#include "scene.h"
+
+namespace fibrecheck {
+namespace {
+
+class ExtremeCatalogue : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(ExtremeCatalogue, ReferenceGivesTheExpectedOutcome) {
+  const Scene scene = read_scene(testing::extreme_scene_path(GetParam()));
+  ASSERT_TRUE(scene.expected.has_value());
+  ReferenceOptions options;
+  options.communicator = MPI_COMM_SELF;
+  if (expected_status(*scene.expected, "reference") == "refused") {
+    try {
+      solve_reference(scene, options);
+      ADD_FAILURE() << "the reference solved a scene it is expected to refuse";
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("contact.slices"), std::string::npos) << e.what();
+    }
+    return;
+  }
+  const Result r = solve_reference(scene, options);
+  const OutcomeCheck check = check_outcome(*scene.expected, r, "reference");
+  for (const std::string& failure : check.failures) ADD_FAILURE() << failure;
+  EXPECT_EQ(testing::first_non_finite(r), "");
+  if (r.status != Status::converged) return;
+  const Result it = solve_iteratively(scene, SolverOptions::from_scene(scene));
+  if (it.status != Status::converged) return;
+  double largest = 0.0, difference = 0.0;
+  ASSERT_EQ(r.fibres.size(), it.fibres.size());
+  for (std::size_t f = 0; f < r.fibres.size(); ++f)
+    for (std::size_t j = 0; j < r.fibres[f].displacement.size(); ++j) {
+      largest = std::max(largest, r.fibres[f].displacement[j].norm());
+      difference =
+          std::max(difference, (r.fibres[f].displacement[j] - it.fibres[f].displacement[j]).norm());
+    }
+  EXPECT_LE(difference, 1e-4 * largest) << "the solvers disagree on " << GetParam();
+}
+
+INSTANTIATE_TEST_SUITE_P(Scenes, ExtremeCatalogue,
+                         ::testing::ValuesIn(testing::extreme_catalogue()), [](const auto& info) {
+                           std::string name = info.param;
+                           for (char& c : name)
+                             if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+                           return name;
+                         });
+
+}  // namespace
+}  // namespace fibrecheck
+
+int main(int argc, char** argv) {
+  dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  ::testing::InitGoogleTest(&argc, argv);
+  return RUN_ALL_TESTS();
+}

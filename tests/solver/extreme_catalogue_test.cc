@@ -1,0 +1,41 @@
+// The extreme catalogue (scenes/extreme/) through the iterative solver with each scene's own
+// settings (the default rule where the scene names none): the status the scene expects, its
+// closed-form forces and deflections within their stated tolerances, and never a non-finite
+// number in the result, whatever the status.
+
+#include "extreme_catalogue.h"
+
+#include <gtest/gtest.h>
+
+#include "expected_outcome.h"
+#include "iterative_solver.h"
+#include "scene.h"
+
+namespace fibrecheck {
+namespace {
+
+class ExtremeCatalogue : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(ExtremeCatalogue, IterativeSolverGivesTheExpectedOutcome) {
+  const Scene scene = read_scene(testing::extreme_scene_path(GetParam()));
+  ASSERT_TRUE(scene.expected.has_value()) << "a catalogue scene says what it expects";
+  const Result r = solve_iteratively(scene, SolverOptions::from_scene(scene));
+  const OutcomeCheck check = check_outcome(*scene.expected, r, "iterative");
+  for (const std::string& failure : check.failures) ADD_FAILURE() << failure;
+  EXPECT_EQ(testing::first_non_finite(r), "");
+  // Numerical trouble is reported, not waited out: a diverging run stops long before the cap.
+  if (r.status == Status::diverged) {
+    EXPECT_LT(r.iterations, 1000) << r.message;
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Scenes, ExtremeCatalogue,
+                         ::testing::ValuesIn(testing::extreme_catalogue()), [](const auto& info) {
+                           std::string name = info.param;
+                           for (char& c : name)
+                             if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+                           return name;
+                         });
+
+}  // namespace
+}  // namespace fibrecheck
