@@ -852,11 +852,24 @@ MeshOptions reference_mesh_options(const Scene& scene, const ReferenceOptions& o
 // from one refinement to the next says little about what is left; instead each refinement K ≥ 2
 // extrapolates (Richardson) with the order observed on the last three, and the refinement stops
 // when two successive extrapolations agree. Every line and wall pair gets its extrapolated force.
+namespace {
+Result solve_refined_until_settled(const Scene& scene, const ReferenceOptions& options);
+}  // namespace
+
 Result solve_reference(const Scene& scene, const ReferenceOptions& options) {
+  Result r;
   if (!options.refine_until_converged || options.line_contact != LineContact::continuous) {
     ReferenceSolver solver(scene, options);
-    return solver.run();
+    r = solver.run();
+  } else {
+    r = solve_refined_until_settled(scene, options);
   }
+  replace_non_finite(r);
+  return r;
+}
+
+namespace {
+Result solve_refined_until_settled(const Scene& scene, const ReferenceOptions& options) {
   auto line_force = [](const Result& r) {
     double total = 0.0;
     for (const ContactResult& c : r.contacts)
@@ -945,5 +958,7 @@ Result solve_reference(const Scene& scene, const ReferenceOptions& options) {
   r.warnings.push_back(out.str());
   return r;
 }
+
+}  // namespace
 
 }  // namespace fibrecheck

@@ -71,6 +71,60 @@ Criterion parse_criterion(const std::string& text, const std::string& source) {
   return parse_name(text, kCriterionNames, source, "criterion");
 }
 
+bool replace_non_finite(Result& r) {
+  bool found = false;
+  auto scrub = [&found](double& x) {
+    if (!std::isfinite(x)) x = 0.0, found = true;
+  };
+  auto scrub_vector = [&scrub](auto& v) {
+    for (Eigen::Index i = 0; i < v.size(); ++i) scrub(v[i]);
+  };
+  for (double* x : {&r.strain_energy, &r.strain_energy_exact, &r.max_overlap, &r.gap_force_residual,
+                    &r.c, &r.c_stable_limit, &r.axial_load_dropped, &r.max_deflection_over_radius,
+                    &r.max_slope, &r.wall_time_s})
+    scrub(*x);
+  if (r.finite_elements) {
+    scrub(r.finite_elements->complementarity_residual);
+    scrub(r.finite_elements->strain_energy_elements);
+    scrub(r.finite_elements->line_force_order);
+    scrub(r.finite_elements->line_force_error_estimate);
+  }
+  for (FibreResult& f : r.fibres) {
+    for (Eigen::Vector3d& u : f.displacement) scrub_vector(u);
+    for (Eigen::Vector2d& m : f.moment) scrub_vector(m);
+  }
+  for (ContactResult& c : r.contacts) {
+    scrub(c.total_force);
+    if (c.extrapolated_force) scrub(*c.extrapolated_force);
+    for (ContactPoint& p : c.points) {
+      scrub(p.position);
+      scrub_vector(p.point);
+      scrub_vector(p.force);
+    }
+  }
+  for (WallResult& w : r.walls) {
+    scrub(w.force);
+    scrub(w.pressure);
+    scrub(w.area);
+  }
+  for (HistoryEntry& h : r.history) {
+    scrub(h.max_overlap);
+    scrub(h.strain_energy);
+  }
+  if (found) {
+    r.warnings.push_back("non-finite numbers in the result were replaced by zero");
+    if (r.status == Status::converged) {
+      r.status = Status::diverged;
+      r.criterion = Criterion::non_finite;
+      r.message =
+          "the solution holds non-finite numbers (loads or stiffnesses beyond double "
+          "precision?)" +
+          (r.message.empty() ? std::string() : "; " + r.message);
+    }
+  }
+  return found;
+}
+
 std::string brief_report(const Result& r) {
   std::ostringstream out;
   out.precision(4);

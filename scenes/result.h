@@ -123,6 +123,11 @@ struct Result {
   std::vector<HistoryEntry> history;
 };
 
+/// Replaces every non-finite number of the result by zero; true when there was one. Both solvers
+/// call it last, so that no result ever holds a NaN or an infinity (a converged status then
+/// becomes `diverged`, criterion `non_finite`).
+bool replace_non_finite(Result& result);
+
 /// Two lines a person reads: status, criterion, iterations, time, energies, overlap (and the
 /// message, if any, on a third).
 std::string brief_report(const Result& result);

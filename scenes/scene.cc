@@ -35,8 +35,19 @@ FibreSpec read_fibre(const json& node, const std::string& path, const std::strin
   f.youngs_modulus = r.number("youngs_modulus");
   require_positive(r, "youngs_modulus", f.youngs_modulus);
   const double scale = std::max({f.start.norm(), f.end.norm(), f.radius});
-  if ((f.end - f.start).norm() <= 1e-12 * scale)
-    r.fail(r.field("end"), "zero-length fibre: end equals start");
+  const double length = (f.end - f.start).norm();
+  if (length <= 1e-12 * scale) r.fail(r.field("end"), "zero-length fibre: end equals start");
+  // The beam formulas divide by E·I and multiply by L³: both must stay ordinary numbers.
+  const double EI = f.youngs_modulus * M_PI * std::pow(f.radius, 4) / 4.0;
+  const double compliance = std::pow(length, 3) / (48.0 * EI);
+  if (!std::isnormal(EI) || !std::isnormal(compliance)) {
+    std::ostringstream out;
+    out << "with youngs_modulus " << f.youngs_modulus << " and length " << length
+        << " the bending stiffness E*pi*r^4/4 = " << EI
+        << " N*mm^2 and the compliance L^3/(48EI) = " << compliance
+        << " mm/N leave the range of double precision";
+    r.fail(r.field("radius"), out.str());
+  }
   r.finish();
   return f;
 }
@@ -230,19 +241,24 @@ namespace {
 /// number can be reported with its field.
 class ParsePath {
  public:
+  struct DuplicateKey {};
   bool on_event(int /*depth*/, json::parse_event_t event, json& parsed) {
     switch (event) {
       case json::parse_event_t::object_start:
       case json::parse_event_t::array_start:
         count_element();
-        frames_.push_back({event == json::parse_event_t::array_start, -1, ""});
+        frames_.push_back({event == json::parse_event_t::array_start, -1, "", {}});
         break;
       case json::parse_event_t::object_end:
       case json::parse_event_t::array_end:
         if (!frames_.empty()) frames_.pop_back();
         break;
       case json::parse_event_t::key:
-        if (!frames_.empty()) frames_.back().key = parsed.get<std::string>();
+        if (!frames_.empty()) {
+          frames_.back().key = parsed.get<std::string>();
+          // JSON leaves duplicates to the reader; one of two values would silently win here.
+          if (!frames_.back().keys.insert(frames_.back().key).second) throw DuplicateKey{};
+        }
         break;
       case json::parse_event_t::value:
         count_element();
@@ -268,6 +284,7 @@ class ParsePath {
     bool array;
     int index;
     std::string key;
+    std::set<std::string> keys;  ///< of an object, seen so far
   };
   void count_element() {
     if (!frames_.empty() && frames_.back().array) ++frames_.back().index;
@@ -301,6 +318,8 @@ Scene read_scene(const std::string& path) {
         json::parse(buffer.str(), [&where](int depth, json::parse_event_t event, json& parsed) {
           return where.on_event(depth, event, parsed);
         });
+  } catch (const ParsePath::DuplicateKey&) {
+    throw InputError(path, where.str(), "duplicate key (JSON would keep only one of the two)");
   } catch (const json::exception& e) {
     std::string reason = e.what();
     const auto bracket = reason.find("] ");

@@ -429,7 +429,9 @@ Result IterativeSolver::assemble(Clock::time_point start) {
 
 Result solve_iteratively(const Scene& scene, const SolverOptions& options) {
   IterativeSolver solver(scene, options);
-  return solver.run();
+  Result r = solver.run();
+  replace_non_finite(r);
+  return r;
 }
 
 }  // namespace fibrecheck

@@ -28,10 +28,19 @@ inline std::string extreme_scene_path(const std::string& name) {
 /// The first non-finite number in a result, or "" when all are finite.
 inline std::string first_non_finite(const Result& r) {
   auto bad = [](double x) { return !std::isfinite(x); };
-  for (double x : {r.strain_energy, r.strain_energy_exact, r.max_overlap, r.gap_force_residual, r.c,
-                   r.c_stable_limit, r.axial_load_dropped, r.max_deflection_over_radius,
-                   r.max_slope, r.wall_time_s})
-    if (bad(x)) return "a scalar field";
+  const std::pair<const char*, double> scalars[] = {
+      {"strain_energy", r.strain_energy},
+      {"strain_energy_exact", r.strain_energy_exact},
+      {"max_overlap", r.max_overlap},
+      {"gap_force_residual", r.gap_force_residual},
+      {"c", r.c},
+      {"c_stable_limit", r.c_stable_limit},
+      {"axial_load_dropped", r.axial_load_dropped},
+      {"max_deflection_over_radius", r.max_deflection_over_radius},
+      {"max_slope", r.max_slope},
+      {"wall_time_s", r.wall_time_s}};
+  for (const auto& [name, x] : scalars)
+    if (bad(x)) return name;
   for (const FibreResult& f : r.fibres) {
     for (const Eigen::Vector3d& u : f.displacement)
       if (!u.allFinite()) return "a displacement of " + f.id;

@@ -207,6 +207,34 @@ TEST_F(Cli, FemWritesTheSameResultSchema) {
 }
 
 // Each kind of bad input: one message naming what is wrong, exit code 2, nothing written.
+// Damaged scene files through the program itself (the scene reader sees thousands in-process,
+// see scene_mutation_test.cc): every one ends with exit code 0, 2 or 3 and a message, and bad
+// input writes nothing.
+TEST_F(Cli, DamagedScenesExitWithZeroTwoOrThree) {
+  const std::string text = slurp(scene("small_tow_19"));
+  for (int i = 0; i < 24; ++i) {
+    std::string damaged = text;
+    if (i % 2 == 0) {
+      damaged = text.substr(0, (text.size() * (i + 1)) / 25);  // truncated
+    } else {
+      damaged[(text.size() * static_cast<std::size_t>(i)) / 25] ^= 0x5a;  // a byte flipped
+    }
+    const std::string file = write_text("damaged" + std::to_string(i) + ".json", damaged);
+    const std::string out = dir_ + "damaged" + std::to_string(i) + ".result.json";
+    const Outcome r = run("solve -q " + file + " --out " + out);
+    EXPECT_TRUE(r.code == 0 || r.code == 2 || r.code == 3) << r.code << "\n" << r.err;
+    if (r.code == 2) {
+      EXPECT_NE(r.err.find(file), std::string::npos) << r.err;
+      EXPECT_FALSE(fs::exists(out));
+    } else {
+      EXPECT_TRUE(fs::exists(out)) << r.err;
+    }
+    if (r.code == 3) {
+      EXPECT_FALSE(r.err.empty());
+    }
+  }
+}
+
 TEST_F(Cli, FemRejectsBadInputWithoutWritingAnything) {
   const std::string out = " --out " + dir_ + "never.json";
   struct Case {
