@@ -75,9 +75,9 @@ step "tolerance study: small_tow_19 against the continuous reference"
 step "tolerance study: a generated 100-fibre tow against the reference on its slices"
 ./build/fibrecheck study tolerance "$out/scenes/tow_100.json" --against-slices --tolerances 1e-3,1e-4,1e-5,1e-6 \
   --out "$out/study/tolerance_tow"
-step "stability study: two crossing fibres and the parallel fibres"
+step "stability study: two crossing fibres, the parallel fibres and the extreme catalogue"
 ./build/fibrecheck study stability scenes/two_fibres_crossing.json scenes/parallel_fibres.json \
-  --max-iterations 50000 --out "$out/study/stability" -q
+  scenes/extreme/*.json --max-iterations 50000 --out "$out/study/stability" -q
 step "report"
 ./build/fibrecheck report "$out/compare" "$out/study" --out "$out/report"
 echo

@@ -72,6 +72,11 @@ int run_study(const StudyArguments& args) {
     const auto result = run_stability_study(scenes, o, solvers, args.out);
     if (!args.quiet)
       for (const StabilityStudyScene& s : result) {
+        for (const CataloguePoint& p : s.catalogue)
+          std::printf("%-28s %-9s %-13s expected %-13s %s\n", s.scene.c_str(), p.solver.c_str(),
+                      p.status.c_str(), p.expected_status.c_str(),
+                      p.failures.empty() ? "as expected" : p.failures.c_str());
+        if (!s.catalogue.empty()) continue;
         std::printf("%s: rule seed, c_crit = %.4g N/mm\n", s.scene.c_str(), s.c_crit);
         for (const StepPoint& p : s.steps)
           std::printf("  c = %5.2f c_crit: %-15s (%s) after %ld iterations\n", p.fraction,

@@ -5,6 +5,8 @@
 #include <sstream>
 
 #include "atomic_file.h"
+#include "expected_outcome.h"
+#include "input_error.h"
 #include "study_store.h"
 
 namespace fibrecheck {
@@ -31,10 +33,10 @@ std::vector<StabilityStudyScene> run_stability_study(const std::vector<Scene>& s
                                                      const Solvers& solvers,
                                                      const std::string& folder) {
   StudyStore store(folder, "stability_study");
-  StudyProgress progress(
-      "stability study",
-      scenes.size() * (options.fractions.size() + 4 * options.stiffness_ratios.size()),
-      options.quiet);
+  std::size_t points = 0;
+  for (const Scene& scene : scenes)
+    points += scene.expected ? 2 : options.fractions.size() + 4 * options.stiffness_ratios.size();
+  StudyProgress progress("stability study", points, options.quiet);
   std::vector<StabilityStudyScene> out;
   std::size_t index = 0;
   auto run_point = [&](const std::string& key, const std::string& what,
@@ -51,6 +53,37 @@ std::vector<StabilityStudyScene> run_stability_study(const std::vector<Scene>& s
   for (const Scene& scene : scenes) {
     StabilityStudyScene study;
     study.scene = scene.name;
+    if (scene.expected) {
+      for (const char* solver : {"iterative", "reference"}) {
+        const nlohmann::json& p =
+            run_point(scene.name + "/catalogue/" + solver, scene.name + ", " + solver, [&] {
+              CataloguePoint point;
+              point.solver = solver;
+              point.expected_status = expected_status(*scene.expected, solver);
+              Result r;
+              try {
+                r = point.solver == "iterative" ? solvers.iterative(scene)
+                                                : solvers.reference_slices(scene);
+              } catch (const InputError& e) {
+                point.status = "refused";  // beyond the solver's reach, said as bad input
+                if (point.expected_status != "refused") point.failures = e.what();
+                return to_json(point);
+              }
+              const OutcomeCheck check = check_outcome(*scene.expected, r, solver);
+              point.rule = r.rule;
+              point.status = to_string(r.status);
+              point.iterations = r.iterations;
+              point.time_s = r.wall_time_s;
+              point.error = check.error;
+              for (const std::string& f : check.failures)
+                point.failures += (point.failures.empty() ? "" : "; ") + f;
+              return to_json(point);
+            });
+        study.catalogue.push_back(catalogue_point(p));
+      }
+      out.push_back(study);
+      continue;
+    }
     study.c_crit = seed_stable_limit(scene, solvers);
     for (double f : options.fractions) {
       const nlohmann::json& p =
@@ -123,7 +156,7 @@ std::vector<StabilityStudyScene> run_stability_study(const std::vector<Scene>& s
     out.push_back(study);
   }
   nlohmann::json all = nlohmann::json::array();
-  std::vector<std::vector<std::string>> steps, stiffness;
+  std::vector<std::vector<std::string>> steps, stiffness, catalogue;
   for (const StabilityStudyScene& s : out) {
     all.push_back(to_json(s));
     for (const StepPoint& p : s.steps)
@@ -133,6 +166,10 @@ std::vector<StabilityStudyScene> run_stability_study(const std::vector<Scene>& s
       stiffness.push_back({s.scene, cell(p.ratio), p.method, std::to_string(p.iterations), p.status,
                            cell(p.time_s), cell(p.errors.deflection), cell(p.errors.force),
                            cell(p.errors.energy)});
+    for (const CataloguePoint& p : s.catalogue)
+      catalogue.push_back({s.scene, p.solver, p.rule, p.expected_status, p.status,
+                           std::to_string(p.iterations), cell(p.time_s), cell(p.error),
+                           p.failures.empty() ? "yes" : "no"});
   }
   const std::filesystem::path dir(folder);
   write_file_atomically((dir / "stability_study.json").string(), all.dump(1) + "\n");
@@ -142,7 +179,36 @@ std::vector<StabilityStudyScene> run_stability_study(const std::vector<Scene>& s
             {"scene", "stiffness_ratio", "method", "iterations", "status", "time_s",
              "deflection_error", "force_error", "energy_error"},
             stiffness);
+  if (!catalogue.empty())
+    write_csv((dir / "catalogue.csv").string(),
+              {"scene", "solver", "rule", "expected_status", "status", "iterations", "time_s",
+               "error", "as_expected"},
+              catalogue);
   return out;
+}
+
+nlohmann::json to_json(const CataloguePoint& p) {
+  return {{"solver", p.solver},
+          {"rule", p.rule},
+          {"status", p.status},
+          {"expected_status", p.expected_status},
+          {"iterations", p.iterations},
+          {"time_s", p.time_s},
+          {"error", std::isfinite(p.error) ? nlohmann::json(p.error) : nlohmann::json()},
+          {"failures", p.failures}};
+}
+
+CataloguePoint catalogue_point(const nlohmann::json& j) {
+  CataloguePoint p;
+  p.solver = j.value("solver", "");
+  p.rule = j.value("rule", "");
+  p.status = j.value("status", "");
+  p.expected_status = j.value("expected_status", "");
+  p.iterations = j.value("iterations", 0L);
+  p.time_s = j.value("time_s", 0.0);
+  p.error = j.contains("error") && j["error"].is_number() ? j["error"].get<double>() : NAN;
+  p.failures = j.value("failures", "");
+  return p;
 }
 
 nlohmann::json to_json(const StabilityStudyScene& s) {
@@ -164,7 +230,12 @@ nlohmann::json to_json(const StabilityStudyScene& s) {
                          {"deflection_error", number(p.errors.deflection)},
                          {"force_error", number(p.errors.force)},
                          {"energy_error", number(p.errors.energy)}});
-  return {{"scene", s.scene}, {"c_crit", s.c_crit}, {"steps", steps}, {"stiffness", stiffness}};
+  nlohmann::json catalogue = nlohmann::json::array();
+  for (const CataloguePoint& p : s.catalogue) catalogue.push_back(to_json(p));
+  nlohmann::json j = {
+      {"scene", s.scene}, {"c_crit", s.c_crit}, {"steps", steps}, {"stiffness", stiffness}};
+  if (!s.catalogue.empty()) j["catalogue"] = catalogue;
+  return j;
 }
 
 }  // namespace fibrecheck

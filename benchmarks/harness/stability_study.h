@@ -7,11 +7,15 @@
 //  - c sweep: rule `seed` with c from 0.05 to 4 times its stable limit c_crit = 2/λmax(D½WD½):
 //    iterations to converge, or the iteration at which divergence was detected;
 //  - stiffness sweep: the Young's modulus of every second fibre times 1 … 1e9, for every rule (the
-//    seed at half its limit) and the reference: iterations, time, error against the reference.
+//    seed at half its limit) and the reference: iterations, time, error against the reference;
+//  - the extreme catalogue: a scene that says what it must give (`expected`, scenes/extreme/) is
+//    not swept but run once by each solver as it stands (the default rule where it names none)
+//    and judged: status, iterations, time, error against its exact answer.
 //
 // Sample run:
-//   fibrecheck study stability scenes/two_fibres_crossing.json --out study
+//   fibrecheck study stability scenes/two_fibres_crossing.json scenes/extreme/*.json --out study
 
+#include <cmath>
 #include <nlohmann/json_fwd.hpp>
 #include <string>
 #include <vector>
@@ -45,11 +49,23 @@ struct StiffnessPoint {
   Errors errors;  ///< against the reference at the same ratio
 };
 
+/// One solver on one catalogue scene.
+struct CataloguePoint {
+  std::string solver;  ///< "iterative" | "reference"
+  std::string rule;
+  std::string status, expected_status;  ///< a status, or `refused`
+  long iterations = 0;
+  double time_s = 0;
+  double error = NAN;    ///< worst relative error against the scene's closed forms
+  std::string failures;  ///< empty: as expected
+};
+
 struct StabilityStudyScene {
   std::string scene;
   double c_crit = 0;
   std::vector<StepPoint> steps;
   std::vector<StiffnessPoint> stiffness;
+  std::vector<CataloguePoint> catalogue;
 };
 
 std::vector<StabilityStudyScene> run_stability_study(const std::vector<Scene>& scenes,
@@ -58,5 +74,7 @@ std::vector<StabilityStudyScene> run_stability_study(const std::vector<Scene>& s
                                                      const std::string& folder);
 
 nlohmann::json to_json(const StabilityStudyScene& scene);
+nlohmann::json to_json(const CataloguePoint& point);
+CataloguePoint catalogue_point(const nlohmann::json& point);
 
 }  // namespace fibrecheck

@@ -39,7 +39,7 @@ TEST(Report, FromTheFixture) {
   EXPECT_EQ(data.comparisons.size(), 1u);
   EXPECT_EQ(data.slice_studies.size(), 1u);
   const ReportSummary summary = write_report(data, out.string());
-  EXPECT_EQ(summary.tables, 5);
+  EXPECT_EQ(summary.tables, 6);
   EXPECT_TRUE(summary.missing.empty()) << summary.missing.front();
   EXPECT_GE(summary.figures, 5);
   const std::string md = slurp(out / "report.md");
@@ -50,6 +50,14 @@ TEST(Report, FromTheFixture) {
   EXPECT_NE(md.find("| small_tow_19 | 1.00e-02 | accelerated | 0.03402 | 0.76 | 22.34 |"),
             std::string::npos);
   EXPECT_NE(md.find("| two_fibres_crossing | auto | 2.36e-09 | 2.37e-11 |"), std::string::npos);
+  // The extreme catalogue's stability table: a run as expected, and one that is not, with why.
+  EXPECT_NE(md.find("| stiffness_ratio_1e9 | iterative (accelerated) | converged | converged | 2 | "
+                    "8.2e-05 | 6.23e-15 | yes |"),
+            std::string::npos)
+      << md;
+  EXPECT_NE(md.find("| coincident_same_supports | reference | unresolvable | converged | 1 | "
+                    "0.0306 | – | no: status converged, expected unresolvable |"),
+            std::string::npos);
   EXPECT_EQ(count(md, "**Table "), summary.tables);
   EXPECT_EQ(count(md, "**Figure "), summary.figures);
   // Figures: PNG files with their signature, and SVG beside them.
@@ -98,7 +106,7 @@ TEST(Report, WithoutGnuplotTheTablesStillComeOut) {
   setenv("FIBRECHECK_GNUPLOT", "/nonexistent/gnuplot", 1);
   const ReportSummary summary = write_report(read_report_data({kFixture}), out.string());
   unsetenv("FIBRECHECK_GNUPLOT");
-  EXPECT_EQ(summary.tables, 5);
+  EXPECT_EQ(summary.tables, 6);
   EXPECT_EQ(summary.figures, 0);
   ASSERT_FALSE(summary.missing.empty());
   EXPECT_NE(summary.missing.front().find("gnuplot"), std::string::npos) << summary.missing.front();
