@@ -63,6 +63,21 @@ std::optional<std::string> find_unresolvable_overlap(const std::vector<Contact>&
                                                      const std::vector<Fibre>& fibres,
                                                      const std::vector<WallSpec>& walls) {
   if (auto why = find_overlapping_supports(fibres, tolerance)) return why;
+  // A pinned support behind a wall: the wall cannot push it out.
+  for (const WallSpec& wall : walls)
+    for (const Fibre& f : fibres)
+      for (int end = 0; end < 2; ++end) {
+        const Eigen::Vector3d& p = end == 0 ? f.start : f.end;
+        const double overlap = f.radius - wall.normal.normalized().dot(p - wall.point);
+        if (overlap > tolerance) {
+          std::ostringstream out;
+          out.precision(3);
+          out << "overlap " << overlap << " mm between fibre " << f.id << " and wall " << wall.id
+              << " at s = " << end << " of " << f.id << ", its pinned support at [" << p.x() << ", "
+              << p.y() << ", " << p.z() << "], where it cannot move: it cannot be resolved";
+          return out.str();
+        }
+      }
   const double immovable = immovable_compliance(fibres);
   for (std::size_t k = 0; k < contacts.size(); ++k)
     if (overlap[k] > tolerance && self_compliance[k] <= immovable) {
