@@ -27,6 +27,7 @@
 #include "fibre.h"
 #include "fibre_mesh.h"
 #include "input_error.h"
+#include "load_path.h"
 #include "unresolvable_overlap.h"
 #include "validity.h"
 
@@ -857,13 +858,15 @@ Result solve_refined_until_settled(const Scene& scene, const ReferenceOptions& o
 }  // namespace
 
 Result solve_reference(const Scene& scene, const ReferenceOptions& options) {
-  Result r;
-  if (!options.refine_until_converged || options.line_contact != LineContact::continuous) {
-    ReferenceSolver solver(scene, options);
-    r = solver.run();
-  } else {
-    r = solve_refined_until_settled(scene, options);
-  }
+  // A load path step by step; without friction each step's answer is that of its own geometry
+  // and loads, so each is solved afresh, exactly.
+  Result r = solve_load_path(scene, [&](const Scene& step, const Result*) {
+    if (!options.refine_until_converged || options.line_contact != LineContact::continuous) {
+      ReferenceSolver solver(step, options);
+      return solver.run();
+    }
+    return solve_refined_until_settled(step, options);
+  });
   replace_non_finite(r);
   return r;
 }

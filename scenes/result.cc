@@ -204,6 +204,22 @@ json result_to_json(const Result& r) {
     j["history"].push_back({{"iteration", h.iteration},
                             {"max_overlap", h.max_overlap},
                             {"strain_energy", h.strain_energy}});
+  if (!r.steps.empty()) {
+    j["steps"] = json::array();
+    for (const StepResult& step : r.steps) {
+      json pressure = json::object();
+      for (const auto& [id, p] : step.wall_pressure) pressure[id] = p;
+      j["steps"].push_back({{"compaction", step.compaction},
+                            {"load_factor", step.load_factor},
+                            {"fibre_volume_fraction", step.fibre_volume_fraction},
+                            {"wall_pressure", pressure},
+                            {"strain_energy", step.strain_energy},
+                            {"contacts_per_fibre", step.contacts_per_fibre},
+                            {"iterations", step.iterations},
+                            {"wall_time_s", step.wall_time_s},
+                            {"status", to_string(step.status)}});
+    }
+  }
   return j;
 }
 
@@ -271,6 +287,21 @@ Result result_from_json(const json& j, const std::string& source) {
     for (const json& h : j.at("history"))
       r.history.push_back({h.at("iteration").get<long>(), h.at("max_overlap").get<double>(),
                            h.at("strain_energy").get<double>()});
+    if (j.contains("steps"))
+      for (const json& e : j.at("steps")) {
+        StepResult step;
+        step.compaction = e.at("compaction").get<double>();
+        step.load_factor = e.at("load_factor").get<double>();
+        step.fibre_volume_fraction = e.at("fibre_volume_fraction").get<double>();
+        for (auto it = e.at("wall_pressure").begin(); it != e.at("wall_pressure").end(); ++it)
+          step.wall_pressure.emplace_back(it.key(), it.value().get<double>());
+        step.strain_energy = e.at("strain_energy").get<double>();
+        step.contacts_per_fibre = e.at("contacts_per_fibre").get<double>();
+        step.iterations = e.at("iterations").get<long>();
+        step.wall_time_s = e.at("wall_time_s").get<double>();
+        step.status = parse_status(e.at("status").get<std::string>(), source);
+        r.steps.push_back(std::move(step));
+      }
     return r;
   } catch (const json::exception& e) {
     throw InputError(source, "", std::string("not a fibrecheck result: ") + e.what());

@@ -75,6 +75,19 @@ const char* to_string(Criterion criterion);
 Status parse_status(const std::string& text, const std::string& source);
 Criterion parse_criterion(const std::string& text, const std::string& source);
 
+/// One finished step of a load path (DESIGN §5 `steps[]`).
+struct StepResult {
+  double compaction = 1.0;
+  double load_factor = 1.0;
+  double fibre_volume_fraction = 0.0;
+  std::vector<std::pair<std::string, double>> wall_pressure;  ///< per wall id, MPa
+  double strain_energy = 0.0;       ///< N·mm, as the result's `strain_energy`
+  double contacts_per_fibre = 0.0;  ///< contact points carrying force, each counted on both sides
+  long iterations = 0;
+  double wall_time_s = 0.0;
+  Status status = Status::converged;
+};
+
 /// What only a finite-element solution has: the complementarity problem's largest |P·d| (N·mm),
 /// its active-set steps summed over the outer iterations, the unknowns of the last mesh, the
 /// strain energy Σ∫M²/(2EI) over the elements (N·mm) from the moment unknowns, and how its
@@ -121,6 +134,8 @@ struct Result {
   std::vector<ContactResult> contacts;
   std::vector<WallResult> walls;
   std::vector<HistoryEntry> history;
+  /// Scenes with a load path: one entry per finished step (the fields above are the last step's).
+  std::vector<StepResult> steps;
 };
 
 /// Replaces every non-finite number of the result by zero; true when there was one. Both solvers

@@ -211,6 +211,20 @@ Scene scene_from_json(const json& document, const std::string& source) {
     r.finish();
   }
 
+  if (top.has("steps")) {
+    const json& steps = top.array("steps");
+    for (std::size_t i = 0; i < steps.size(); ++i) {
+      ObjectReader r(steps[i], indexed("steps", i), source);
+      LoadStep step;
+      step.compaction = r.number("compaction", step.compaction);
+      if (!(step.compaction > 0.0 && step.compaction <= 1.0))
+        r.fail(r.field("compaction"), "must lie in (0, 1] (the cross-section scale factor F)");
+      step.load_factor = r.number("load_factor", step.load_factor);
+      r.finish();
+      scene.steps.push_back(step);
+    }
+  }
+
   if (top.has("output")) {
     ObjectReader r(top.at("output"), "output", source);
     const long samples = r.integer("samples", scene.output.samples);
@@ -372,6 +386,11 @@ json scene_to_json(const Scene& scene) {
       {"energy_window", scene.solver.energy_window},
       {"max_iterations", scene.solver.max_iterations}};
   j["output"] = {{"samples", scene.output.samples}};
+  if (!scene.steps.empty()) {
+    j["steps"] = json::array();
+    for (const LoadStep& step : scene.steps)
+      j["steps"].push_back({{"compaction", step.compaction}, {"load_factor", step.load_factor}});
+  }
   if (scene.expected) j["expected"] = to_json(*scene.expected);
   return j;
 }
@@ -441,6 +460,10 @@ std::string scene_format_help() {
          "    samples                     displacement samples per fibre   default: "
       << d.output.samples
       << "\n"
+         "  steps[]                       a load path, default: none (one step)\n"
+         "    compaction                  factor F in (0, 1] on the cross-section about the\n"
+         "                                tow's centre (supports and walls too)   default: 1\n"
+         "    load_factor                 factor on every load   default: 1\n"
          "  expected                      optional, never read by the solvers: what the scene\n"
          "                                must give (status per solver, closed-form forces and\n"
          "                                deflections with tolerances), judged by the tests and\n"

@@ -60,6 +60,13 @@ struct SolverSettings {
   long max_iterations = 100000;
 };
 
+/// One step of a load path: the cross-section compaction factor F (positions ⊥ the tow axis scale
+/// by F about the tow's centre, supports and walls included) and the factor on the scene's loads.
+struct LoadStep {
+  double compaction = 1.0;
+  double load_factor = 1.0;
+};
+
 struct OutputSettings {
   int samples = 101;  ///< displacement samples per fibre in the result
 };
@@ -72,6 +79,8 @@ struct Scene {
   ContactSettings contact;
   SolverSettings solver;
   OutputSettings output;
+  /// The load path; empty: one step from the unloaded state, the scene as written.
+  std::vector<LoadStep> steps;
   /// What the scene must give, where it is known (catalogue scenes); never read by the solvers.
   std::optional<ExpectedOutcome> expected;
   std::string source;  ///< file it was read from (for messages)

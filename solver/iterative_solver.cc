@@ -17,6 +17,7 @@
 #include "convergence.h"
 #include "fibre.h"
 #include "friction.h"
+#include "load_path.h"
 #include "superposition.h"
 #include "unresolvable_overlap.h"
 #include "validity.h"
@@ -72,6 +73,10 @@ class IterativeSolver {
         energy_window_(options.energy_window, options.energy_tolerance) {}
 
   Result run();
+  /// Starts from another state's contacts (the previous step of a load path): those found again
+  /// keep their force.
+  void start_from(std::vector<Contact> contacts) { contacts_ = std::move(contacts); }
+  const std::vector<Contact>& contacts() const { return contacts_; }
 
  private:
   void detect_contacts();
@@ -428,8 +433,15 @@ Result IterativeSolver::assemble(Clock::time_point start) {
 }  // namespace
 
 Result solve_iteratively(const Scene& scene, const SolverOptions& options) {
-  IterativeSolver solver(scene, options);
-  Result r = solver.run();
+  // A load path: each step starts from the contacts and forces the previous one ended with.
+  std::vector<Contact> state;
+  Result r = solve_load_path(scene, [&](const Scene& step, const Result* previous) {
+    IterativeSolver solver(step, options);
+    if (previous) solver.start_from(state);
+    Result result = solver.run();
+    state = solver.contacts();
+    return result;
+  });
   replace_non_finite(r);
   return r;
 }

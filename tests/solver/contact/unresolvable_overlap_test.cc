@@ -92,6 +92,7 @@ TEST(UnresolvableOverlap, TheFirstOffendingContactIsNamedWallsAndSlicesToo) {
   const auto fibres = two_fibres();
   WallSpec floor;
   floor.id = "floor";
+  floor.point = {0, 0, -0.01};  // A's supports just touch it (a support inside it is unresolvable)
   std::vector<Contact> contacts = {contact(ContactKind::point, 0.5, 0.5),
                                    contact(ContactKind::wall, 0.125, 0.0, 0),
                                    contact(ContactKind::line, 0.375, 0.625)};

@@ -1,0 +1,119 @@
+#include "load_path.h"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+namespace fibrecheck {
+
+namespace {
+
+/// The scene's two cross-section axes (⊥ the tow axis), as the contact model takes them.
+std::pair<Eigen::Vector3d, Eigen::Vector3d> section_axes(const Eigen::Vector3d& axis) {
+  const Eigen::Vector3d helper =
+      std::fabs(axis.x()) < 0.9 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();
+  const Eigen::Vector3d g1 = axis.cross(helper).normalized();
+  return {g1, axis.cross(g1).normalized()};
+}
+
+Eigen::Vector3d tow_centre(const Scene& scene) {
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+  for (const FibreSpec& f : scene.fibres) centre += f.start + f.end;
+  return centre / (2.0 * static_cast<double>(scene.fibres.size()));
+}
+
+}  // namespace
+
+Scene scene_at_step(const Scene& scene, const LoadStep& step) {
+  Scene s = scene;
+  s.steps.clear();
+  const Eigen::Vector3d axis = scene.contact.axis.normalized();
+  const Eigen::Vector3d centre = tow_centre(scene);
+  auto compact = [&](const Eigen::Vector3d& p) {
+    const Eigen::Vector3d d = p - centre;
+    const Eigen::Vector3d along = d.dot(axis) * axis;
+    return Eigen::Vector3d(centre + along + step.compaction * (d - along));
+  };
+  for (FibreSpec& f : s.fibres) {
+    f.start = compact(f.start);
+    f.end = compact(f.end);
+  }
+  for (WallSpec& w : s.walls) w.point = compact(w.point);
+  for (LoadSpec& l : s.loads) l.force *= step.load_factor;
+  return s;
+}
+
+double fibre_volume_fraction(const Scene& scene) {
+  double fibres = 0.0;
+  for (const FibreSpec& f : scene.fibres) fibres += M_PI * f.radius * f.radius;
+  const Eigen::Vector3d axis = scene.contact.axis.normalized();
+  const auto [g1, g2] = section_axes(axis);
+  // Opposite walls (normals ±g): the distance between them along g.
+  auto span = [&](const Eigen::Vector3d& g) {
+    double low = -INFINITY, high = INFINITY;
+    for (const WallSpec& w : scene.walls) {
+      const Eigen::Vector3d n = w.normal.normalized();
+      if (n.dot(g) > 1.0 - 1e-9) low = std::max(low, w.point.dot(g));
+      if (n.dot(g) < -1.0 + 1e-9) high = std::min(high, w.point.dot(g));
+    }
+    return std::isfinite(low) && std::isfinite(high) ? high - low : NAN;
+  };
+  double area = span(g1) * span(g2);
+  if (!std::isfinite(area)) {
+    Eigen::Vector2d low(INFINITY, INFINITY), high(-INFINITY, -INFINITY);
+    for (const FibreSpec& f : scene.fibres)
+      for (const Eigen::Vector3d& p : {f.start, f.end}) {
+        const Eigen::Vector2d q(p.dot(g1), p.dot(g2));
+        low = low.cwiseMin(q - Eigen::Vector2d::Constant(f.radius));
+        high = high.cwiseMax(q + Eigen::Vector2d::Constant(f.radius));
+      }
+    area = (high - low).prod();
+  }
+  return area > 0.0 ? fibres / area : 0.0;
+}
+
+StepResult step_result(const Scene& stepped, const LoadStep& step, const Result& r) {
+  StepResult e;
+  e.compaction = step.compaction;
+  e.load_factor = step.load_factor;
+  e.fibre_volume_fraction = fibre_volume_fraction(stepped);
+  for (const WallResult& w : r.walls) e.wall_pressure.emplace_back(w.id, w.pressure);
+  e.strain_energy = r.strain_energy;
+  std::size_t sides = 0;
+  for (const ContactResult& c : r.contacts) sides += c.points.size() * (c.kind == "wall" ? 1 : 2);
+  e.contacts_per_fibre =
+      stepped.fibres.empty() ? 0.0 : static_cast<double>(sides) / stepped.fibres.size();
+  e.iterations = r.iterations;
+  e.wall_time_s = r.wall_time_s;
+  e.status = r.status;
+  return e;
+}
+
+Result solve_load_path(const Scene& scene,
+                       const std::function<Result(const Scene&, const Result*)>& solve_step) {
+  if (scene.steps.empty()) return solve_step(scene, nullptr);
+  Result last;
+  std::vector<StepResult> steps;
+  long iterations = 0;
+  double seconds = 0.0;
+  for (std::size_t i = 0; i < scene.steps.size(); ++i) {
+    const Scene stepped = scene_at_step(scene, scene.steps[i]);
+    Result r = solve_step(stepped, i == 0 ? nullptr : &last);
+    steps.push_back(step_result(stepped, scene.steps[i], r));
+    iterations += r.iterations;
+    seconds += r.wall_time_s;
+    last = std::move(r);
+    if (last.status != Status::converged) {
+      last.message = "step " + std::to_string(i + 1) + " of " + std::to_string(scene.steps.size()) +
+                     ": " + last.message;
+      break;
+    }
+  }
+  last.steps = std::move(steps);
+  last.iterations = iterations;
+  last.wall_time_s = seconds;
+  return last;
+}
+
+}  // namespace fibrecheck
