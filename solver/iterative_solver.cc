@@ -75,7 +75,10 @@ class IterativeSolver {
   Result run();
   /// Starts from another state's contacts (the previous step of a load path): those found again
   /// keep their force.
-  void start_from(std::vector<Contact> contacts) { contacts_ = std::move(contacts); }
+  void start_from(std::vector<Contact> contacts) {
+    contacts_ = std::move(contacts);
+    attached_ = false;
+  }
   const std::vector<Contact>& contacts() const { return contacts_; }
 
  private:
@@ -97,6 +100,7 @@ class IterativeSolver {
   double margin_;
   ContactDetector detector_;
   DivergenceMonitor divergence_;
+  bool attached_ = false;  ///< the superposition and the step know the current contact list
   EnergyWindow energy_window_;
 
   std::vector<Contact> contacts_;
@@ -159,8 +163,9 @@ void IterativeSolver::detect_contacts() {
   iterate_ = std::move(iterate);
   previous_forces_ = std::move(previous_iterate);
   grid_u_at_detection_ = grid_u_;
-  if (unchanged) return;
+  if (unchanged && attached_) return;
   superposition_.attach(contacts_);
+  attached_ = true;
   gather_forces();
   estimate_step();
 }

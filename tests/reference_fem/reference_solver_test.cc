@@ -256,6 +256,21 @@ TEST(ReferenceSolver, ContinuousLineContactConvergesUnderRefinement) {
       << settled.message;
 }
 
+// A load path through the reference: compacting a crossing by F brings B to F·h above A and
+// shortens it to F·L_B, P(F) = (r_A + r_B − F·h)/(C_A + C_B(F)) (as the iterative solver's test).
+TEST(ReferenceSolver, CompactionStepsMeetTheClosedForm) {
+  Scene s = testing::crossing(0.3, 0.6, 1e-4);
+  s.steps = {{1.0, 1.0}, {0.999, 1.0}, {0.995, 1.0}};
+  const Result r = solve_reference(s);
+  ASSERT_EQ(r.status, Status::converged) << r.message;
+  ASSERT_EQ(r.steps.size(), 3u);
+  const double F = 0.995, h = 0.02 - 1e-4, EI = bending_stiffness(0.01, 80000);
+  const double CA = compliance(0.3, 1.0, EI), CB = std::pow(0.6 * F * 0.4 * F, 2) / (3.0 * EI * F);
+  const double P = (0.02 - F * h) / (CA + CB);
+  EXPECT_NEAR(force_between(r, "A", "B"), P, 1e-8 * P);
+  for (const StepResult& step : r.steps) EXPECT_EQ(step.status, Status::converged);
+}
+
 // A point load on fibre B where it rests (just touching) across fibre A: the two beams share it
 // by their compliances, R = P·C_B/(C_A + C_B), with the contact where the chords cross.
 TEST(ReferenceSolver, LoadedCrossingSharesTheLoadByCompliance) {
