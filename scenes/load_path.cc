@@ -17,10 +17,30 @@ std::pair<Eigen::Vector3d, Eigen::Vector3d> section_axes(const Eigen::Vector3d& 
   return {g1, axis.cross(g1).normalized()};
 }
 
+/// The low and high wall along g when two opposite walls (normals +g and −g) bound the section.
+std::pair<double, double> walls_along(const Scene& scene, const Eigen::Vector3d& g) {
+  double low = -INFINITY, high = INFINITY;
+  for (const WallSpec& w : scene.walls) {
+    const Eigen::Vector3d n = w.normal.normalized();
+    if (n.dot(g) > 1.0 - 1e-9) low = std::max(low, w.point.dot(g));
+    if (n.dot(g) < -1.0 + 1e-9) high = std::min(high, w.point.dot(g));
+  }
+  return {low, high};
+}
+
+/// The middle of the walls' box where two pairs of opposite walls bound the section, else the
+/// mean of the fibres' supports.
 Eigen::Vector3d tow_centre(const Scene& scene) {
   Eigen::Vector3d centre = Eigen::Vector3d::Zero();
   for (const FibreSpec& f : scene.fibres) centre += f.start + f.end;
-  return centre / (2.0 * static_cast<double>(scene.fibres.size()));
+  centre /= 2.0 * static_cast<double>(scene.fibres.size());
+  const auto [g1, g2] = section_axes(scene.contact.axis.normalized());
+  const auto [low1, high1] = walls_along(scene, g1);
+  const auto [low2, high2] = walls_along(scene, g2);
+  if (std::isfinite(low1) && std::isfinite(high1) && std::isfinite(low2) && std::isfinite(high2))
+    centre +=
+        (0.5 * (low1 + high1) - centre.dot(g1)) * g1 + (0.5 * (low2 + high2) - centre.dot(g2)) * g2;
+  return centre;
 }
 
 }  // namespace
@@ -51,12 +71,7 @@ double fibre_volume_fraction(const Scene& scene) {
   const auto [g1, g2] = section_axes(axis);
   // Opposite walls (normals ±g): the distance between them along g.
   auto span = [&](const Eigen::Vector3d& g) {
-    double low = -INFINITY, high = INFINITY;
-    for (const WallSpec& w : scene.walls) {
-      const Eigen::Vector3d n = w.normal.normalized();
-      if (n.dot(g) > 1.0 - 1e-9) low = std::max(low, w.point.dot(g));
-      if (n.dot(g) < -1.0 + 1e-9) high = std::min(high, w.point.dot(g));
-    }
+    const auto [low, high] = walls_along(scene, g);
     return std::isfinite(low) && std::isfinite(high) ? high - low : NAN;
   };
   double area = span(g1) * span(g2);

@@ -10,7 +10,8 @@ namespace fibrecheck {
 
 /// The scene as it stands at one step of its load path (seed §4.3.1, compaction of a tow): every
 /// position — fibre supports and wall points — scaled by the step's compaction factor F about the
-/// tow's centre in the cross-section plane (⊥ contact.axis; the centre is the mean of the fibres'
+/// tow's centre in the cross-section plane (⊥ contact.axis; the centre is the middle of the walls'
+/// box where two pairs of opposite walls bound the section, else the mean of the fibres'
 /// supports), and every load times the step's load factor. F = 1 and load factor 1 give the scene
 /// as written. The step list itself is dropped from the result.
 Scene scene_at_step(const Scene& scene, const LoadStep& step);

@@ -45,6 +45,8 @@ Scene generate_tow(const TowOptions& o) {
     throw InputError(source, "radius", "must be positive");
   if (!(o.youngs_modulus > 0.0 && std::isfinite(o.youngs_modulus)))
     throw InputError(source, "youngs_modulus", "must be positive");
+  if (o.steps < 0 || o.steps > 1000)
+    throw InputError(source, "steps", "must be a whole number from 0 to 1000");
   if (!(o.compaction > 0.0 && o.compaction <= 1.0))
     throw InputError(source, "compaction", "must lie in (0, 1]");
 
@@ -153,9 +155,13 @@ Scene generate_tow(const TowOptions& o) {
   Scene scene;
   scene.name = "tow_" + std::to_string(o.fibres) + "_seed_" + std::to_string(o.seed);
   scene.source = scene.name;
+  // With a load path the scene is written before compaction and its steps compact it.
+  const double written = o.steps > 0 ? 1.0 : o.compaction;
+  for (int k = 1; k <= o.steps; ++k)
+    scene.steps.push_back({1.0 - (1.0 - o.compaction) * k / o.steps, 1.0});
   for (std::size_t i = 0; i < placed.size(); ++i) {
-    const Eigen::Vector2d y0 = centre + o.compaction * (placed[i].y0 - centre);
-    const Eigen::Vector2d y1 = centre + o.compaction * (placed[i].y1 - centre);
+    const Eigen::Vector2d y0 = centre + written * (placed[i].y0 - centre);
+    const Eigen::Vector2d y1 = centre + written * (placed[i].y1 - centre);
     FibreSpec f;
     f.id = "F" + std::to_string(i);
     f.start = Eigen::Vector3d(0.0, y0[0], y0[1]);
@@ -164,7 +170,7 @@ Scene generate_tow(const TowOptions& o) {
     f.youngs_modulus = o.youngs_modulus;
     scene.fibres.push_back(f);
   }
-  const double half = 0.5 * o.compaction * side;
+  const double half = 0.5 * written * side;
   scene.walls = {
       {"y_min", Eigen::Vector3d(0, centre[0] - half, 0), Eigen::Vector3d::UnitY()},
       {"y_max", Eigen::Vector3d(0, centre[0] + half, 0), -Eigen::Vector3d::UnitY()},

@@ -26,6 +26,9 @@ struct TowOptions {
   double youngs_modulus = 80000;  ///< MPa
   double compaction = 0.9;        ///< factor F on the cross-section, (0, 1]
   double clearance = 0.02;        ///< extra gap when placing, fraction of 2r
+  /// 0: the tow as compacted. K > 0: the tow before compaction (walls at the uncompacted
+  /// section) with a load path of K steps F_k = 1 − (1 − F)·k/K, k = 1…K, the last the compaction.
+  int steps = 0;
 };
 
 /// Throws InputError (field = the option's name) for impossible options or when the fibres cannot

@@ -18,7 +18,8 @@ const std::map<std::string, std::string> kOptionOfField = {{"fibres", "--fibres"
                                                            {"length", "--length"},
                                                            {"radius", "--radius"},
                                                            {"youngs_modulus", "--youngs-modulus"},
-                                                           {"compaction", "--compaction"}};
+                                                           {"compaction", "--compaction"},
+                                                           {"steps", "--steps"}};
 }  // namespace
 
 int run_generate(const GenerateArguments& args) {
@@ -32,7 +33,9 @@ int run_generate(const GenerateArguments& args) {
   }
   write_scene(args.out, scene);
   std::cout << "wrote " << args.out << ": " << scene.fibres.size() << " fibres, "
-            << scene.contact.slices << " slices, compaction " << args.tow.compaction << "\n";
+            << scene.contact.slices << " slices, compaction " << args.tow.compaction;
+  if (!scene.steps.empty()) std::cout << " in " << scene.steps.size() << " steps";
+  std::cout << "\n";
   return kExitConverged;
 }
 
@@ -53,7 +56,12 @@ CLI::App* add_generate_command(CLI::App& app, GenerateArguments& args) {
   tow->add_option("--radius", o.radius, "Fibre radius, mm")->capture_default_str();
   tow->add_option("--youngs-modulus", o.youngs_modulus, "Young's modulus, MPa")
       ->capture_default_str();
-  tow->add_option("--compaction", o.compaction, "Cross-section scale factor F in (0, 1]")
+  tow->add_option("--compaction,--final-compaction", o.compaction,
+                  "Cross-section scale factor F in (0, 1] (with --steps: the last step's)")
+      ->capture_default_str();
+  tow->add_option("--steps", o.steps,
+                  "Write the tow uncompacted with a load path of K compaction steps down to F "
+                  "(0: the tow as compacted)")
       ->capture_default_str();
   tow->add_option("--out", args.out, "Scene file to write")->required();
   return tow;

@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "input_error.h"
+#include "load_path.h"
 
 namespace fibrecheck {
 namespace {
@@ -78,6 +79,39 @@ TEST(TowGenerator, MinSliceDistanceOfCrossingLines) {
   EXPECT_NEAR(min_slice_distance({0, 0}, {1, 0}, {1, 0}, {0, 0}), 0.0, 1e-15);
   EXPECT_NEAR(min_slice_distance({0, 0}, {0, 0}, {0, 3}, {0, 3}), 3.0, 1e-15);
   EXPECT_NEAR(min_slice_distance({0, 0}, {0, 0}, {1, 1}, {-1, 1}), 1.0, 1e-15);
+}
+
+}  // namespace
+}  // namespace fibrecheck
+
+namespace fibrecheck {
+namespace {
+
+// With a load path the tow is written before compaction; its last step is the compacted tow the
+// generator writes without one, support for support and wall for wall.
+TEST(TowGenerator, StepsCompactTheTowTheGeneratorCompacts) {
+  TowOptions o;
+  o.fibres = 19;
+  o.seed = 4;
+  o.compaction = 0.85;
+  const Scene compacted = generate_tow(o);
+  o.steps = 5;
+  const Scene path = generate_tow(o);
+  ASSERT_EQ(path.steps.size(), 5u);
+  EXPECT_DOUBLE_EQ(path.steps[0].compaction, 0.97);
+  EXPECT_DOUBLE_EQ(path.steps.back().compaction, 0.85);
+  const Scene last = scene_at_step(path, path.steps.back());
+  ASSERT_EQ(last.fibres.size(), compacted.fibres.size());
+  for (std::size_t i = 0; i < last.fibres.size(); ++i) {
+    EXPECT_LT((last.fibres[i].start - compacted.fibres[i].start).norm(), 1e-12) << i;
+    EXPECT_LT((last.fibres[i].end - compacted.fibres[i].end).norm(), 1e-12) << i;
+  }
+  for (std::size_t w = 0; w < last.walls.size(); ++w)
+    EXPECT_NEAR(last.walls[w].normal.dot(last.walls[w].point - compacted.walls[w].point), 0.0,
+                1e-12);
+  EXPECT_NEAR(fibre_volume_fraction(last), fibre_volume_fraction(compacted), 1e-12);
+  EXPECT_NEAR(fibre_volume_fraction(path) * std::pow(1.0 / 0.85, 2),
+              fibre_volume_fraction(compacted), 1e-12);
 }
 
 }  // namespace
