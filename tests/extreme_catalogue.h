@@ -3,7 +3,10 @@
 // The catalogue of extreme scenes (scenes/extreme/): every file, and what every result must be
 // whatever its status — finite.
 
+#include <gtest/gtest.h>
+
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <filesystem>
 #include <string>
@@ -23,6 +26,14 @@ inline std::vector<std::string> extreme_catalogue() {
 
 inline std::string extreme_scene_path(const std::string& name) {
   return FIBRECHECK_SCENES_DIR "/extreme/" + name + ".json";
+}
+
+/// A test name for a catalogue scene (gtest allows letters, digits and underscores).
+inline std::string catalogue_test_name(const ::testing::TestParamInfo<std::string>& info) {
+  std::string name = info.param;
+  for (char& c : name)
+    if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+  return name;
 }
 
 /// The first non-finite number in a result, or "" when all are finite.

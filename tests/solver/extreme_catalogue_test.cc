@@ -30,12 +30,8 @@ TEST_P(ExtremeCatalogue, IterativeSolverGivesTheExpectedOutcome) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Scenes, ExtremeCatalogue,
-                         ::testing::ValuesIn(testing::extreme_catalogue()), [](const auto& info) {
-                           std::string name = info.param;
-                           for (char& c : name)
-                             if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
-                           return name;
-                         });
+                         ::testing::ValuesIn(testing::extreme_catalogue()),
+                         testing::catalogue_test_name);
 
 }  // namespace
 }  // namespace fibrecheck
