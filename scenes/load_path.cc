@@ -5,17 +5,11 @@
 #include <chrono>
 #include <cmath>
 
+#include "cross_section_axes.h"
+
 namespace fibrecheck {
 
 namespace {
-
-/// The scene's two cross-section axes (⊥ the tow axis), as the contact model takes them.
-std::pair<Eigen::Vector3d, Eigen::Vector3d> section_axes(const Eigen::Vector3d& axis) {
-  const Eigen::Vector3d helper =
-      std::fabs(axis.x()) < 0.9 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();
-  const Eigen::Vector3d g1 = axis.cross(helper).normalized();
-  return {g1, axis.cross(g1).normalized()};
-}
 
 /// The low and high wall along g when two opposite walls (normals +g and −g) bound the section.
 std::pair<double, double> walls_along(const Scene& scene, const Eigen::Vector3d& g) {
@@ -34,7 +28,7 @@ Eigen::Vector3d tow_centre(const Scene& scene) {
   Eigen::Vector3d centre = Eigen::Vector3d::Zero();
   for (const FibreSpec& f : scene.fibres) centre += f.start + f.end;
   centre /= 2.0 * static_cast<double>(scene.fibres.size());
-  const auto [g1, g2] = section_axes(scene.contact.axis.normalized());
+  const auto [g1, g2] = cross_section_axes(scene.contact.axis.normalized());
   const auto [low1, high1] = walls_along(scene, g1);
   const auto [low2, high2] = walls_along(scene, g2);
   if (std::isfinite(low1) && std::isfinite(high1) && std::isfinite(low2) && std::isfinite(high2))
@@ -68,7 +62,7 @@ double fibre_volume_fraction(const Scene& scene) {
   double fibres = 0.0;
   for (const FibreSpec& f : scene.fibres) fibres += M_PI * f.radius * f.radius;
   const Eigen::Vector3d axis = scene.contact.axis.normalized();
-  const auto [g1, g2] = section_axes(axis);
+  const auto [g1, g2] = cross_section_axes(axis);
   // Opposite walls (normals ±g): the distance between them along g.
   auto span = [&](const Eigen::Vector3d& g) {
     const auto [low, high] = walls_along(scene, g);

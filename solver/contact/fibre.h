@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "cross_section_axes.h"
 #include "scene.h"
 
 namespace fibrecheck {
@@ -37,9 +38,5 @@ std::vector<Fibre> make_fibres(const Scene& scene);
 
 /// The smallest radius of the fibres (mm); infinite when there are none.
 double smallest_radius(const std::vector<Fibre>& fibres);
-
-/// Two unit vectors (g1, g2) completing `axis` to a right-handed orthonormal basis; for the x axis
-/// they are y and z.
-std::pair<Eigen::Vector3d, Eigen::Vector3d> cross_section_axes(const Eigen::Vector3d& axis);
 
 }  // namespace fibrecheck
