@@ -26,8 +26,10 @@
 #include "contact_results.h"
 #include "fibre.h"
 #include "fibre_mesh.h"
+#include "frictional_contact.h"
 #include "input_error.h"
 #include "load_path.h"
+#include "slip_origins.h"
 #include "unresolvable_overlap.h"
 #include "validity.h"
 
@@ -197,6 +199,10 @@ class ReferenceSolver {
   Result run();
   /// The mesh of the first outer iteration: the candidates on the fibres under the scene's loads.
   MeshOptions first_mesh_options();
+  /// Friction: where this step's slip is measured from (the previous step's end).
+  void start_from(SlipOrigins origins) { origins_ = std::move(origins); }
+  /// After `run`: where the next step's slip is measured from.
+  const SlipOrigins& end_state() const { return end_state_; }
 
  private:
   void collect_stations();
@@ -205,6 +211,7 @@ class ReferenceSolver {
   void setup_system();
   void assemble_system();
   void solve();
+  void solve_friction(const std::vector<char>& excluded);
   bool update_active_set();
   void output_results(Result& r);
 
@@ -254,8 +261,16 @@ class ReferenceSolver {
   Eigen::SparseMatrix<double> W_;
   std::vector<char> pushing_;
   long active_set_iterations_ = 0;
-  std::string trouble_;      ///< why the problem could not be solved, if it could not
-  bool non_finite_ = false;  ///< the finite-element solutions were not finite
+  std::string trouble_;              ///< why the problem could not be solved, if it could not
+  bool non_finite_ = false;          ///< the finite-element solutions were not finite
+  bool friction_unsettled_ = false;  ///< the frictional problem's Newton method did not settle
+
+  double mu_;
+  SlipOrigins origins_, end_state_;
+  /// The frictional problem of the candidates (μ > 0): W with the tangential blocks and q.
+  FrictionalProblem friction_problem_;
+  Eigen::VectorXd reaction_;  ///< its last answer (warm start of the next outer iteration)
+  long newton_steps_ = 0;
 };
 
 ReferenceSolver::ReferenceSolver(const Scene& scene, const ReferenceOptions& options)
@@ -275,7 +290,8 @@ ReferenceSolver::ReferenceSolver(const Scene& scene, const ReferenceOptions& opt
                     ? LineQuadrature::gauss(continuous_cells(scene, options.refine))
                     : LineQuadrature::slices(scene.contact.slices)),
       grid_u_(fibres_.size(),
-              std::vector<Eigen::Vector3d>(detector_.grid().size(), Eigen::Vector3d::Zero())) {
+              std::vector<Eigen::Vector3d>(detector_.grid().size(), Eigen::Vector3d::Zero())),
+      mu_(scene.contact.friction) {
   owned_.assign(fibres_.size(), 0);
   for (std::size_t f = rank_; f < fibres_.size(); f += processes_) owned_[f] = 1;
   const int samples = scene.output.samples;
@@ -348,6 +364,7 @@ void ReferenceSolver::detect() {
   std::vector<Contact> found = detector_.detect(grid_u_);
   carry_over(contacts_, found);
   contacts_ = std::move(found);
+  if (mu_ > 0.0) origins_.set(contacts_);
 }
 
 // The last finite-element solution at both sides of every contact (mm), from the process that
@@ -510,6 +527,7 @@ void ReferenceSolver::assemble_system() {
     Eigen::Index contact;
     int station;
     double alpha;
+    bool on_a;
   };
   std::vector<std::vector<Side>> sides(fibres_.size());
   for (Eigen::Index k = 0; k < n; ++k) {
@@ -518,8 +536,8 @@ void ReferenceSolver::assemble_system() {
     d0_[k] = detector_.geometry().overlap_along_normal(
         c, packed(u0_, c.a, station_a_[k]),
         wall ? Eigen::Vector3d::Zero().eval() : packed(u0_, c.b, station_b_[k]));
-    sides[c.a].push_back({k, station_a_[k], wall ? 1.0 : -1.0});
-    if (!wall) sides[c.b].push_back({k, station_b_[k], 1.0});
+    sides[c.a].push_back({k, station_a_[k], wall ? 1.0 : -1.0, true});
+    if (!wall) sides[c.b].push_back({k, station_b_[k], 1.0, false});
   }
   std::vector<Eigen::Triplet<double>> entries;
   std::size_t count = 0;
@@ -541,6 +559,57 @@ void ReferenceSolver::assemble_system() {
   }
   W_.resize(n, n);
   W_.setFromTriplets(entries.begin(), entries.end());  // sums the two fibres' parts
+  if (!(mu_ > 0.0)) return;
+
+  // Friction: W with the tangential blocks. Component i of contact k acts on a side of it along
+  // φ (force on that fibre per unit reaction): the normal −n on A and +n on B (+n on a walled
+  // fibre), a tangent +t on A and −t on B; then W_(j,a)(k,b) = Σ_f G_f(j, k) φ⊥_ja·φ⊥_kb, and q
+  // holds the overlaps d0 and the slips under the scene's loads alone.
+  FrictionalProblem& problem = friction_problem_;
+  problem.mu = mu_;
+  problem.offset.assign(n + 1, 0);
+  for (Eigen::Index k = 0; k < n; ++k)
+    problem.offset[k + 1] = problem.offset[k] + 1 + contacts_[k].tangents;
+  const Eigen::Index unknowns = problem.offset[n];
+  auto direction = [&](Eigen::Index k, int i, bool on_a) -> Eigen::Vector3d {
+    const Contact& c = contacts_[k];
+    if (i == 0)
+      return (c.kind == ContactKind::wall || !on_a) ? c.normal : Eigen::Vector3d(-c.normal);
+    const Eigen::Vector3d t = i == 1 ? c.tangent : Eigen::Vector3d(c.normal.cross(c.tangent));
+    return on_a ? t : Eigen::Vector3d(-t);
+  };
+  problem.q.resize(unknowns);
+  for (Eigen::Index k = 0; k < n; ++k) {
+    const Contact& c = contacts_[k];
+    const bool wall = c.kind == ContactKind::wall;
+    const Eigen::Vector3d slip =
+        c.relative(packed(u0_, c.a, station_a_[k]),
+                   wall ? Eigen::Vector3d::Zero().eval() : packed(u0_, c.b, station_b_[k])) -
+        c.origin;
+    problem.q[problem.offset[k]] = d0_[k];
+    for (int i = 1; i <= c.tangents; ++i)
+      problem.q[problem.offset[k] + i] = direction(k, i, true).dot(slip);
+  }
+  std::vector<Eigen::Triplet<double>> frictional;
+  frictional.reserve(4 * count);
+  for (std::size_t f = 0; f < fibres_.size(); ++f) {
+    const std::size_t m = stations_[f].size();
+    const Eigen::Vector3d t = fibres_[f].t;
+    auto across = [&](const Eigen::Vector3d& v) { return Eigen::Vector3d(v - v.dot(t) * t); };
+    for (const Side& j : sides[f])
+      for (int a = 0; a <= contacts_[j.contact].tangents; ++a) {
+        const Eigen::Vector3d pj = across(direction(j.contact, a, j.on_a));
+        for (const Side& k : sides[f]) {
+          const double g = G[g_offset_[f] + j.station * m + k.station];
+          for (int b = 0; b <= contacts_[k.contact].tangents; ++b)
+            frictional.emplace_back(problem.offset[j.contact] + a, problem.offset[k.contact] + b,
+                                    g * pj.dot(across(direction(k.contact, b, k.on_a))));
+        }
+      }
+  }
+  problem.W.resize(unknowns, unknowns);
+  problem.W.setFromTriplets(frictional.begin(), frictional.end());
+  problem.excluded.assign(n, 0);
 }
 
 // solve: the complementarity problem, exactly, starting from the last pushing set.
@@ -587,6 +656,46 @@ void ReferenceSolver::solve() {
     trouble_ = "the active-set method did not finish in " +
                std::to_string(options_.max_active_set_iterations) + " passes";
   for (Eigen::Index k = 0; k < n; ++k) contacts_[k].force = solved ? P_[k] : 0.0;
+  if (solved && !singular && mu_ > 0.0) solve_friction(excluded);
+}
+
+// solve_friction: Coulomb's law at every candidate, exactly (semismooth Newton on its natural
+// map, frictional_contact.h), from the frictionless answer just found and the friction forces the
+// candidates carried over.
+void ReferenceSolver::solve_friction(const std::vector<char>& excluded) {
+  FrictionalProblem& problem = friction_problem_;
+  problem.excluded = excluded;
+  const Eigen::Index n = d0_.size();
+  Eigen::VectorXd r = Eigen::VectorXd::Zero(problem.offset[n]);
+  for (Eigen::Index k = 0; k < n; ++k) {
+    const Contact& c = contacts_[k];
+    const Eigen::Index o = problem.offset[k];
+    r[o] = P_[k];
+    if (c.tangents >= 1) r[o + 1] = c.tangent.dot(c.friction);
+    if (c.tangents == 2) r[o + 2] = c.normal.cross(c.tangent).dot(c.friction);
+  }
+  const FrictionalSolve solved = solve_frictional(problem, threshold_, 200, r);
+  newton_steps_ += solved.newton_steps;
+  if (!solved.settled) {
+    std::ostringstream out;
+    out.precision(3);
+    out << "the frictional contact problem did not settle: after " << solved.newton_steps
+        << " Newton steps Coulomb's law is still violated by " << solved.residual
+        << " mm (mu = " << mu_ << "; its solution is unique only for small mu, and a Newton "
+        << "method may cycle between sticking and slipping sets where it is not)";
+    trouble_ = out.str();
+    friction_unsettled_ = true;
+  }
+  for (Eigen::Index k = 0; k < n; ++k) {
+    Contact& c = contacts_[k];
+    const Eigen::Index o = problem.offset[k];
+    c.force = std::max(r[o], 0.0);
+    c.friction.setZero();
+    if (c.tangents >= 1) c.friction += r[o + 1] * c.tangent;
+    if (c.tangents == 2) c.friction += r[o + 2] * c.normal.cross(c.tangent);
+    P_[k] = c.force;
+    pushing_[k] = c.force > 0.0 ? 1 : 0;
+  }
 }
 
 // update_active_set: candidates again on the deformed fibres. Places and normals are those of the
@@ -674,6 +783,7 @@ void ReferenceSolver::output_results(Result& r) {
     u_a[k] = packed(u, c.a, station_a_[k]);
     if (c.kind != ContactKind::wall) u_b[k] = packed(u, c.b, station_b_[k]);
     c.overlap = detector_.geometry().overlap_along_normal(c, u_a[k], u_b[k]);
+    if (mu_ > 0.0) c.slip = c.tangential(c.relative(u_a[k], u_b[k]) - c.origin);
     r.max_overlap = std::max(r.max_overlap, c.overlap);
     if (c.force > 0.0) r.gap_force_residual = std::max(r.gap_force_residual, -c.overlap);
     figures.complementarity_residual =
@@ -689,7 +799,11 @@ void ReferenceSolver::output_results(Result& r) {
     }
     r.fibres.push_back(std::move(fr));
   }
-  r.contacts = contact_results(contacts_, fibres_, scene_.walls, force_on_a_, u_a, u_b);
+  r.contacts = contact_results(contacts_, fibres_, scene_.walls, force_on_a_, u_a, u_b, mu_);
+  if (mu_ > 0.0) {
+    r.friction = friction_figures(contacts_, mu_, FrictionModel::coulomb);
+    end_state_ = SlipOrigins(contacts_, u_a, u_b, r);
+  }
   r.walls = wall_results(contacts_, fibres_, scene_.walls);
   // The energies and the dropped axial load, from this process's elements, summed: Eq. 4.34 by
   // the trapezium rule on the FE moments at the slice spacing (as the iterative solver), ½ΣP·v
@@ -737,8 +851,12 @@ Result ReferenceSolver::run() {
     assemble_system();
     solve();
     if (!trouble_.empty()) {
-      r.status = non_finite_ ? Status::diverged : Status::unresolvable;
-      r.criterion = non_finite_ ? Criterion::non_finite : Criterion::unresolvable;
+      r.status = non_finite_           ? Status::diverged
+                 : friction_unsettled_ ? Status::max_iterations
+                                       : Status::unresolvable;
+      r.criterion = non_finite_           ? Criterion::non_finite
+                    : friction_unsettled_ ? Criterion::max_iterations
+                                          : Criterion::unresolvable;
       r.message = trouble_;
       break;
     }
@@ -778,9 +896,12 @@ Result ReferenceSolver::run() {
   if (options_.line_contact == LineContact::continuous)
     r.stages.push_back("continuous_line_contact");
   r.stages.push_back(options_.beam_solver == BeamSolver::direct ? "mumps" : "cg_boomeramg");
-  if (scene_.contact.friction > 0.0) {
-    r.stages.push_back("friction_not_modelled");
-    r.warnings.push_back("the reference model is frictionless; contact.friction was ignored");
+  if (mu_ > 0.0) {
+    r.stages.push_back("friction_coulomb");
+    if (scene_.contact.friction_model == FrictionModel::seed)
+      r.warnings.push_back(
+          "the reference solves Coulomb's law exactly; friction_model \"seed\" names the "
+          "iterative solver's approximation of it (Eqs. 4.29-4.33), which it is compared with");
   }
   if (r.status == Status::converged && r.max_overlap > tolerance_) {
     std::ostringstream out;
@@ -796,6 +917,7 @@ Result ReferenceSolver::run() {
   timing.precision(3);
   timing << "unknowns " << r.finite_elements->unknowns << ", active-set passes "
          << active_set_iterations_;
+  if (mu_ > 0.0) timing << ", friction Newton steps " << newton_steps_;
   if (options_.beam_solver == BeamSolver::cg_amg)
     timing << ", CG iterations " << (model_ ? model_->cg_iterations() : 0) << " (last mesh)";
   timing << "; wall time per phase (s):";
@@ -848,25 +970,33 @@ MeshOptions reference_mesh_options(const Scene& scene, const ReferenceOptions& o
 // extrapolates (Richardson) with the order observed on the last three, and the refinement stops
 // when two successive extrapolations agree. Every line and wall pair gets its extrapolated force.
 namespace {
-Result solve_refined_until_settled(const Scene& scene, const ReferenceOptions& options);
+Result solve_refined_until_settled(const Scene& scene, const ReferenceOptions& options,
+                                   SlipOrigins& origins);
 }  // namespace
 
 Result solve_reference(const Scene& scene, const ReferenceOptions& options) {
   // A load path step by step; without friction each step's answer is that of its own geometry
   // and loads, so each is solved afresh, exactly.
+  // With friction each step starts where the last one ended (its slip is measured from there).
+  SlipOrigins origins;
   Result r = solve_load_path(scene, [&](const Scene& step, const Result*) {
     if (!options.refine_until_converged || options.line_contact != LineContact::continuous) {
       ReferenceSolver solver(step, options);
-      return solver.run();
+      solver.start_from(origins);
+      Result result = solver.run();
+      origins = solver.end_state();
+      return result;
     }
-    return solve_refined_until_settled(step, options);
+    return solve_refined_until_settled(step, options, origins);
   });
   replace_non_finite(r);
   return r;
 }
 
 namespace {
-Result solve_refined_until_settled(const Scene& scene, const ReferenceOptions& options) {
+Result solve_refined_until_settled(const Scene& scene, const ReferenceOptions& options,
+                                   SlipOrigins& origins) {
+  const SlipOrigins start = origins;
   auto line_force = [](const Result& r) {
     double total = 0.0;
     for (const ContactResult& c : r.contacts)
@@ -889,7 +1019,9 @@ Result solve_refined_until_settled(const Scene& scene, const ReferenceOptions& o
   for (int K = std::min(options.refine, coarsest_refinement(scene)); K <= options.max_refine; ++K) {
     once.refine = K;
     ReferenceSolver solver(scene, once);
+    solver.start_from(start);
     r = solver.run();
+    origins = solver.end_state();
     if (r.status != Status::converged) return r;
     force.push_back(line_force(r));
     const std::size_t m = force.size();

@@ -56,7 +56,8 @@ struct ReferenceOptions {
 /// deformed finite-element fibres (with the contact model shared with the iterative solver),
 /// re-meshes, and stops when the candidates and the active set no longer change. Every number it
 /// reports — displacements, energies, the dropped axial load — comes from its own finite elements.
-/// Friction is not modelled (the result says so in `stages`).
+/// With friction (μ > 0) the same problem is solved with Coulomb's law, exactly, per load step
+/// (frictional_contact.h).
 ///
 /// Runs on every process of `options.communicator` (MPI must be initialised): the fibres are
 /// shared out among the processes, each meshes and solves its own, and every process ends with the

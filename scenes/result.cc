@@ -89,17 +89,25 @@ bool replace_non_finite(Result& r) {
     scrub(r.finite_elements->line_force_order);
     scrub(r.finite_elements->line_force_error_estimate);
   }
+  if (r.friction)
+    for (double* x :
+         {&r.friction->stick_residual, &r.friction->slip_residual, &r.friction->cone_residual})
+      scrub(*x);
   for (FibreResult& f : r.fibres) {
     for (Eigen::Vector3d& u : f.displacement) scrub_vector(u);
     for (Eigen::Vector2d& m : f.moment) scrub_vector(m);
   }
   for (ContactResult& c : r.contacts) {
     scrub(c.total_force);
+    scrub(c.normal_force);
+    scrub(c.friction_force);
     if (c.extrapolated_force) scrub(*c.extrapolated_force);
     for (ContactPoint& p : c.points) {
       scrub(p.position);
       scrub_vector(p.point);
       scrub_vector(p.force);
+      scrub_vector(p.normal_force);
+      scrub_vector(p.friction_force);
     }
   }
   for (WallResult& w : r.walls) {
@@ -168,6 +176,14 @@ json result_to_json(const Result& r) {
       j["line_force_error_estimate"] = r.finite_elements->line_force_error_estimate;
     }
   }
+  if (r.friction)
+    j["friction"] = {{"model", r.friction->model},
+                     {"mu", r.friction->mu},
+                     {"stick_residual", r.friction->stick_residual},
+                     {"slip_residual", r.friction->slip_residual},
+                     {"cone_residual", r.friction->cone_residual},
+                     {"sticking", r.friction->sticking},
+                     {"slipping", r.friction->slipping}};
   j["stages"] = r.stages;
   j["warnings"] = r.warnings;
   j["fibres"] = json::array();
@@ -185,13 +201,18 @@ json result_to_json(const Result& r) {
   j["contacts"] = json::array();
   for (const ContactResult& c : r.contacts) {
     json points = json::array();
-    for (const ContactPoint& p : c.points)
-      points.push_back(
-          {{"position", p.position}, {"point", vec(p.point)}, {"force", vec(p.force)}});
-    json pair = {{"fibres", {c.fibres[0], c.fibres[1]}},
-                 {"kind", c.kind},
-                 {"total_force", c.total_force},
-                 {"points", points}};
+    for (const ContactPoint& p : c.points) {
+      json point = {{"position", p.position},
+                    {"point", vec(p.point)},
+                    {"force", vec(p.force)},
+                    {"normal_force", vec(p.normal_force)},
+                    {"friction_force", vec(p.friction_force)}};
+      if (!p.state.empty()) point["state"] = p.state;
+      points.push_back(std::move(point));
+    }
+    json pair = {{"fibres", {c.fibres[0], c.fibres[1]}}, {"kind", c.kind},
+                 {"total_force", c.total_force},         {"normal_force", c.normal_force},
+                 {"friction_force", c.friction_force},   {"points", points}};
     if (c.extrapolated_force) pair["extrapolated_force"] = *c.extrapolated_force;
     j["contacts"].push_back(std::move(pair));
   }
@@ -253,6 +274,17 @@ Result result_from_json(const json& j, const std::string& source) {
       figures.line_force_order = j.value("line_force_order", 0.0);
       figures.line_force_error_estimate = j.value("line_force_error_estimate", -1.0);
     }
+    if (j.contains("friction")) {
+      const json& f = j.at("friction");
+      FrictionFigures& figures = r.friction.emplace();
+      figures.model = f.at("model").get<std::string>();
+      figures.mu = f.at("mu").get<double>();
+      figures.stick_residual = f.at("stick_residual").get<double>();
+      figures.slip_residual = f.at("slip_residual").get<double>();
+      figures.cone_residual = f.at("cone_residual").get<double>();
+      figures.sticking = f.value("sticking", 0L);
+      figures.slipping = f.value("slipping", 0L);
+    }
     r.stages = j.at("stages").get<std::vector<std::string>>();
     r.warnings = j.value("warnings", std::vector<std::string>{});
     for (const json& f : j.at("fibres")) {
@@ -270,6 +302,8 @@ Result result_from_json(const json& j, const std::string& source) {
                    c.at("fibres").at(1).get<std::string>()};
       cr.kind = c.at("kind").get<std::string>();
       cr.total_force = c.at("total_force").get<double>();
+      cr.normal_force = c.value("normal_force", cr.total_force);
+      cr.friction_force = c.value("friction_force", 0.0);
       if (c.contains("extrapolated_force"))
         cr.extrapolated_force = c.at("extrapolated_force").get<double>();
       for (const json& p : c.at("points")) {
@@ -277,6 +311,9 @@ Result result_from_json(const json& j, const std::string& source) {
         cp.position = p.at("position").get<double>();
         if (p.contains("point")) cp.point = to_vec(p.at("point"));
         cp.force = to_vec(p.at("force"));
+        cp.normal_force = p.contains("normal_force") ? to_vec(p.at("normal_force")) : cp.force;
+        if (p.contains("friction_force")) cp.friction_force = to_vec(p.at("friction_force"));
+        cp.state = p.value("state", std::string());
         cr.points.push_back(cp);
       }
       r.contacts.push_back(std::move(cr));

@@ -14,6 +14,11 @@ struct ContactPoint {
   double position = 0.0;  ///< fraction of the length of fibres[0] from its start
   Eigen::Vector3d point = Eigen::Vector3d::Zero();  ///< mm, midpoint of the two centreline points
   Eigen::Vector3d force = Eigen::Vector3d::Zero();  ///< N, on fibres[0]
+  /// Its parts (N, on fibres[0]): along the contact normal and the friction force (§4.3.4).
+  Eigen::Vector3d normal_force = Eigen::Vector3d::Zero();
+  Eigen::Vector3d friction_force = Eigen::Vector3d::Zero();
+  /// With friction (μ > 0): "stick" (|F| < μN) or "slip" (|F| = μN); empty without.
+  std::string state;
 };
 
 /// All contact points between one pair (fibre–fibre or fibre–wall).
@@ -21,6 +26,8 @@ struct ContactResult {
   std::array<std::string, 2> fibres;  ///< [idA, idB] or [fibreId, wallId]
   std::string kind;                   ///< "point" | "line" | "wall"
   double total_force = 0.0;           ///< N, magnitude of the resultant
+  double normal_force = 0.0;          ///< N, magnitude of the normal parts' resultant
+  double friction_force = 0.0;        ///< N, magnitude of the friction forces' resultant
   std::vector<ContactPoint> points;
   /// The reference's continuous line contact only (line and wall pairs): `total_force`
   /// extrapolated to infinitely many line points from its refinements (N).
@@ -105,6 +112,19 @@ struct FiniteElementFigures {
   double line_force_error_estimate = -1.0;
 };
 
+/// How well a frictional state meets Coulomb's law (μ > 0): the largest slip at a sticking point
+/// (mm), the largest slip not along its friction force at a slipping point (mm, the part across F
+/// and any part against it), and the largest excess of |F| over μN (N).
+struct FrictionFigures {
+  std::string model;  ///< "coulomb" | "seed"
+  double mu = 0.0;
+  double stick_residual = 0.0;
+  double slip_residual = 0.0;
+  double cone_residual = 0.0;
+  long sticking = 0;  ///< points carrying force that stick
+  long slipping = 0;  ///< and that slip
+};
+
 /// The result of either solver (DESIGN §5); the harness cannot tell the solvers apart.
 struct Result {
   std::string scene;
@@ -128,6 +148,8 @@ struct Result {
   double max_slope = 0.0;
   /// Present in results of the finite-element reference.
   std::optional<FiniteElementFigures> finite_elements;
+  /// Present when the scene has friction (μ > 0).
+  std::optional<FrictionFigures> friction;
   std::vector<std::string> stages;
   std::vector<std::string> warnings;
   std::vector<FibreResult> fibres;

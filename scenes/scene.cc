@@ -114,6 +114,10 @@ const char* to_string(UpdateRule rule) {
   return "?";
 }
 
+const char* to_string(FrictionModel model) {
+  return model == FrictionModel::seed ? "seed" : "coulomb";
+}
+
 const char* to_string(LoadKind kind) {
   return kind == LoadKind::point ? "point" : "distributed";
 }
@@ -182,6 +186,15 @@ Scene scene_from_json(const json& document, const std::string& source) {
     c.axis.normalize();
     c.friction = r.number("friction", c.friction);
     if (c.friction < 0.0) r.fail(r.field("friction"), "must not be negative");
+    if (r.has("friction_model")) {
+      const std::string model = r.string("friction_model");
+      if (model == "coulomb")
+        c.friction_model = FrictionModel::coulomb;
+      else if (model == "seed")
+        c.friction_model = FrictionModel::seed;
+      else
+        r.fail(r.field("friction_model"), "must be \"coulomb\" or \"seed\", got \"" + model + "\"");
+    }
     c.parallel_angle_deg = r.number("parallel_angle_deg", c.parallel_angle_deg);
     if (!(c.parallel_angle_deg > 0.0 && c.parallel_angle_deg < 90.0))
       r.fail(r.field("parallel_angle_deg"), "must lie in (0, 90) degrees");
@@ -376,6 +389,7 @@ json scene_to_json(const Scene& scene) {
   j["contact"] = {{"slices", scene.contact.slices},
                   {"axis", vec(scene.contact.axis)},
                   {"friction", scene.contact.friction},
+                  {"friction_model", to_string(scene.contact.friction_model)},
                   {"parallel_angle_deg", scene.contact.parallel_angle_deg}};
   j["solver"] = {
       {"rule", to_string(scene.solver.rule)},
@@ -436,6 +450,10 @@ std::string scene_format_help() {
          "    friction                    Coulomb coefficient mu   default: "
       << d.contact.friction
       << "\n"
+         "    friction_model              \"coulomb\" (stick/slip per load step) | \"seed\"\n"
+         "                                (Eqs. 4.29-4.33 on the deformed centres)   default: \""
+      << to_string(d.contact.friction_model)
+      << "\"\n"
          "    parallel_angle_deg          fibres within this angle of the axis are sliced as\n"
          "                                line contacts   default: "
       << d.contact.parallel_angle_deg

@@ -37,11 +37,18 @@ struct WallSpec {
   Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();
 };
 
+/// How friction acts when μ > 0 (DESIGN §2): `coulomb` — per step a contact sticks while
+/// |F_t| < μN and slips against its relative tangential motion with |F_t| = μN otherwise; `seed` —
+/// the rule of §4.3.4 as written: the previous iteration's resultant split along the normal of the
+/// deformed centres, its tangential part capped by μN (Eqs. 4.29–4.33).
+enum class FrictionModel { coulomb, seed };
+
 /// Contact detection (seed §4.3.3). All defaults of the scene format live in these initialisers.
 struct ContactSettings {
   int slices = 50;                                  ///< cross-sections n along the tow axis
   Eigen::Vector3d axis = Eigen::Vector3d::UnitX();  ///< tow axis (unit after reading)
   double friction = 0.0;                            ///< Coulomb coefficient μ (Eq. 4.31)
+  FrictionModel friction_model = FrictionModel::coulomb;
   /// Fibres within this angle of the tow axis are tow fibres: pairs of them touch along lines and
   /// are sliced; every other pair is a point contact (Eqs. 4.16–4.24).
   double parallel_angle_deg = 10.0;
@@ -93,6 +100,7 @@ struct Scene {
 
 const char* to_string(UpdateRule rule);
 const char* to_string(LoadKind kind);
+const char* to_string(FrictionModel model);
 /// Parses `seed`, `auto`, `accelerated`; throws InputError naming `field` otherwise.
 UpdateRule parse_update_rule(const std::string& text, const std::string& file,
                              const std::string& field);

@@ -6,25 +6,40 @@
 
 namespace fibrecheck {
 
+namespace {
+Eigen::Vector3d second_tangent(const Contact& c) {
+  return c.normal.cross(c.tangent);
+}
+}  // namespace
+
 void ComplianceOperator::apply(const Eigen::VectorXd& x, Eigen::VectorXd& y) const {
   const std::size_t n = contacts_.size();
+  const int m = components();
   std::vector<Eigen::Vector3d> force_on_a(n), u_a, u_b;
   for (std::size_t k = 0; k < n; ++k) {
     const Contact& c = contacts_[k];
-    const double xk = weighted_ ? std::sqrt(c.weight) * x[k] : x[k];
-    force_on_a[k] = (c.kind == ContactKind::wall ? xk : -xk) * c.normal;
+    const double scale = weighted_ ? std::sqrt(c.weight) : 1.0;
+    const double P = scale * x[m * k];
+    force_on_a[k] = (c.kind == ContactKind::wall ? P : -P) * c.normal;
+    if (m == 3 && c.tangents >= 1) force_on_a[k] += scale * x[m * k + 1] * c.tangent;
+    if (m == 3 && c.tangents == 2) force_on_a[k] += scale * x[m * k + 2] * second_tangent(c);
   }
   superposition_.contact_displacements(contacts_, force_on_a, false, u_a, u_b);
-  y.resize(n);
+  y.setZero(static_cast<Eigen::Index>(m * n));
   for (std::size_t k = 0; k < n; ++k) {
     const Contact& c = contacts_[k];
-    y[k] = c.kind == ContactKind::wall ? c.normal.dot(u_a[k]) : c.normal.dot(u_b[k] - u_a[k]);
-    if (weighted_) y[k] *= std::sqrt(c.weight);
+    const double scale = weighted_ ? std::sqrt(c.weight) : 1.0;
+    const Eigen::Vector3d relative = c.relative(u_a[k], u_b[k]);
+    // The overlap P removes: n·(u_B − u_A), or n·u_A for a fibre pushed off a wall.
+    y[m * k] = scale * c.normal.dot(c.kind == ContactKind::wall ? u_a[k] : relative);
+    // A tangential force on A removes slip: its part of W is −t·(u_B − u_A).
+    if (m == 3 && c.tangents >= 1) y[m * k + 1] = -scale * c.tangent.dot(relative);
+    if (m == 3 && c.tangents == 2) y[m * k + 2] = -scale * second_tangent(c).dot(relative);
   }
 }
 
 double ComplianceOperator::largest_eigenvalue(int max_iterations, double tolerance) const {
-  const Eigen::Index n = static_cast<Eigen::Index>(contacts_.size());
+  const Eigen::Index n = static_cast<Eigen::Index>(components() * contacts_.size());
   if (n == 0) return 0.0;
   Eigen::VectorXd x = Eigen::VectorXd::Ones(n) / std::sqrt(static_cast<double>(n)), y;
   double lambda = 0.0;

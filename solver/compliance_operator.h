@@ -18,9 +18,17 @@ class ComplianceOperator {
   /// With `weighted`, the operator is D½·W·D½, D the contacts' weights (1/n per slice): the one
   /// the seed's rule iterates on, whose step is c·D (Eq. 4.28), so that it is stable for
   /// c < 2/λmax(D½·W·D½).
+  /// With `frictional`, the operator acts on three components per contact, the normal force P and
+  /// the friction force along the contact's tangents (zero where it has fewer than two), and
+  /// returns the overlap and the slip they remove: the Delassus operator of the frictional problem.
   ComplianceOperator(const Superposition& superposition, const std::vector<Contact>& contacts,
-                     bool weighted = false)
-      : superposition_(superposition), contacts_(contacts), weighted_(weighted) {}
+                     bool weighted = false, bool frictional = false)
+      : superposition_(superposition),
+        contacts_(contacts),
+        weighted_(weighted),
+        frictional_(frictional) {}
+
+  int components() const { return frictional_ ? 3 : 1; }
 
   /// y = W·x (or D½·W·D½·x).
   void apply(const Eigen::VectorXd& x, Eigen::VectorXd& y) const;
@@ -34,6 +42,7 @@ class ComplianceOperator {
   const Superposition& superposition_;
   const std::vector<Contact>& contacts_;
   bool weighted_;
+  bool frictional_;
 };
 
 /// W_kk of the beam formulas: how much overlap a unit force removes at this contact alone (mm/N),

@@ -18,6 +18,7 @@
 #include "fibre.h"
 #include "friction.h"
 #include "load_path.h"
+#include "slip_origins.h"
 #include "superposition.h"
 #include "unresolvable_overlap.h"
 #include "validity.h"
@@ -70,16 +71,24 @@ class IterativeSolver {
         margin_(candidate_margin(fibres_, options.margin_factor)),
         detector_(fibres_, scene, margin_),
         divergence_(options.overlap_tolerance),
-        energy_window_(options.energy_window, options.energy_tolerance) {}
+        energy_window_(options.energy_window, options.energy_tolerance),
+        mu_(scene.contact.friction),
+        coulomb_(mu_ > 0.0 && scene.contact.friction_model == FrictionModel::coulomb),
+        seed_friction_(mu_ > 0.0 && scene.contact.friction_model == FrictionModel::seed) {}
 
   Result run();
   /// Starts from another state's contacts (the previous step of a load path): those found again
   /// keep their force.
-  void start_from(std::vector<Contact> contacts) {
+  void start_from(std::vector<Contact> contacts, SlipOrigins origins) {
     contacts_ = std::move(contacts);
+    origins_ = std::move(origins);
     attached_ = false;
   }
   const std::vector<Contact>& contacts() const { return contacts_; }
+  /// Where the next step's slip is measured from, after `run`.
+  SlipOrigins end_state(const Result& result) const {
+    return SlipOrigins(contacts_, u_a_, u_b_, result);
+  }
 
  private:
   void detect_contacts();
@@ -102,6 +111,11 @@ class IterativeSolver {
   DivergenceMonitor divergence_;
   bool attached_ = false;  ///< the superposition and the step know the current contact list
   EnergyWindow energy_window_;
+  double mu_;
+  bool coulomb_;        ///< Coulomb friction: the tangential force projected onto μP's disk
+  bool seed_friction_;  ///< the seed's friction rule (Eqs. 4.29–4.33)
+  SlipOrigins origins_;
+  FrictionFigures friction_;
 
   std::vector<Contact> contacts_;
   std::vector<Eigen::Vector3d> force_on_a_, u_a_, u_b_;
@@ -109,6 +123,8 @@ class IterativeSolver {
   Eigen::VectorXd previous_forces_;  ///< accelerated rule: the previous iterate P_{k−1}
   Eigen::VectorXd iterate_;          ///< accelerated rule: the current iterate P_k
   Eigen::VectorXd next_forces_;      ///< scratch: the forces of the next evaluation
+  /// The same for the friction forces (Coulomb friction).
+  std::vector<Eigen::Vector3d> previous_friction_, friction_iterate_, next_friction_;
   double momentum_t_ = 1.0;
   bool forces_gathered_ = false;  ///< force_on_a_ matches the contacts' forces
   int uphill_streak_ = 0;
@@ -154,14 +170,24 @@ void IterativeSolver::detect_contacts() {
   const bool had_momentum = iterate_.size() == static_cast<Eigen::Index>(contacts_.size());
   Eigen::VectorXd iterate(static_cast<Eigen::Index>(found.size()));
   Eigen::VectorXd previous_iterate(iterate.size());
+  std::vector<Eigen::Vector3d> friction_iterate(coulomb_ ? found.size() : 0);
+  std::vector<Eigen::Vector3d> previous_friction(friction_iterate.size());
+  const bool had_friction_momentum = friction_iterate_.size() == contacts_.size();
   for (std::size_t i = 0; i < found.size(); ++i) {
     const bool known = had_momentum && origin[i] >= 0;
     iterate[i] = known ? iterate_[origin[i]] : found[i].force;
     previous_iterate[i] = known ? previous_forces_[origin[i]] : found[i].force;
+    if (!coulomb_) continue;
+    const bool known_friction = had_friction_momentum && origin[i] >= 0;
+    friction_iterate[i] = known_friction ? friction_iterate_[origin[i]] : found[i].friction;
+    previous_friction[i] = known_friction ? previous_friction_[origin[i]] : found[i].friction;
   }
   contacts_ = std::move(found);
+  if (mu_ > 0.0) origins_.set(contacts_);
   iterate_ = std::move(iterate);
   previous_forces_ = std::move(previous_iterate);
+  friction_iterate_ = std::move(friction_iterate);
+  previous_friction_ = std::move(previous_friction);
   grid_u_at_detection_ = grid_u_;
   if (unchanged && attached_) return;
   superposition_.attach(contacts_);
@@ -183,8 +209,10 @@ bool IterativeSolver::moved_beyond_margin() {
 void IterativeSolver::estimate_step() {
   // The seed's rule steps by c·D (c/n per slice, Eq. 4.28): its stability limit is that of
   // D½·W·D½, in the units of the scene's c. The other rules step uniformly.
+  // With Coulomb friction the step acts on the friction forces too: the limit is that of the
+  // frictional Delassus operator.
   const bool seed = options_.rule == UpdateRule::seed;
-  lambda_max_ = ComplianceOperator(superposition_, contacts_, seed).largest_eigenvalue();
+  lambda_max_ = ComplianceOperator(superposition_, contacts_, seed, coulomb_).largest_eigenvalue();
   if (seed)
     step_ = *options_.c;
   else
@@ -207,20 +235,26 @@ std::optional<std::string> IterativeSolver::find_unresolvable() const {
 void IterativeSolver::evaluate() {
   if (!forces_gathered_) gather_forces();
   superposition_.contact_displacements(contacts_, force_on_a_, true, u_a_, u_b_, &exact_energy_);
-  detector_.geometry().measure(contacts_, u_a_, u_b_);
+  detector_.geometry().measure(contacts_, u_a_, u_b_, coulomb_);
   residuals_ = measure_residuals(contacts_);
+  if (mu_ > 0.0) friction_ = friction_figures(contacts_, mu_, scene_.contact.friction_model);
 }
 
 void IterativeSolver::update_forces() {
   const Eigen::Index n = static_cast<Eigen::Index>(contacts_.size());
-  const double mu = scene_.contact.friction;
+  const double mu = mu_;
+  const bool coulomb = coulomb_;
   const bool seed = options_.rule == UpdateRule::seed;
   const bool accelerated = options_.rule == UpdateRule::accelerated;
   Contact* const contact = contacts_.data();
   Eigen::VectorXd& next = next_forces_;
   next.resize(n);
-  // §4.3.2: P' = max(0, P + c·d); under rule seed slices take c/n (Eq. 4.28). The accelerated
-  // rule's restart test (gradient restart: −d(y)·(P_{k+1} − P_k) > 0) is summed in the same pass.
+  if (coulomb) next_friction_.resize(n);
+  Eigen::Vector3d* const next_friction = next_friction_.data();
+  // §4.3.2: P' = max(0, P + c·d); under rule seed slices take c/n (Eq. 4.28). Coulomb friction
+  // steps the same way on the slip, F' = the point of the disk |F| ≤ μP' nearest to F + c·s
+  // (Eq. 4.31). The accelerated rule's restart test (gradient restart: −(d, s)·(r_{k+1} − r_k) > 0)
+  // is summed in the same pass.
   double uphill = 0.0;
 #pragma omp parallel for schedule(static) reduction(+ : uphill) if (n > 4096)
   for (Eigen::Index k = 0; k < n; ++k) {
@@ -228,6 +262,9 @@ void IterativeSolver::update_forces() {
     const double step = seed ? step_ * c.weight : step_;
     next[k] = std::max(0.0, c.force + step * c.overlap);
     if (accelerated) uphill += -c.overlap * (next[k] - iterate_[k]);
+    if (!coulomb) continue;
+    next_friction[k] = onto_coulomb_disk(c.friction + step * c.slip, mu * next[k]);
+    if (accelerated) uphill += -c.slip.dot(next_friction[k] - friction_iterate_[k]);
   }
   if (accelerated) {
     // Nesterov momentum on the same projected step, restarted when the step has pointed uphill on
@@ -246,12 +283,25 @@ void IterativeSolver::update_forces() {
 #pragma omp parallel for schedule(static) if (n > 4096)
     for (Eigen::Index k = 0; k < n; ++k)
       next[k] = std::max(0.0, iterate_[k] + beta * (iterate_[k] - previous_forces_[k]));
+    if (coulomb) {
+      previous_friction_.swap(friction_iterate_);
+      friction_iterate_.swap(next_friction_);
+      next_friction_.resize(n);
+      for (Eigen::Index k = 0; k < n; ++k)
+        next_friction_[k] = onto_coulomb_disk(
+            friction_iterate_[k] + beta * (friction_iterate_[k] - previous_friction_[k]),
+            mu * next[k]);
+    }
   }
+  const ContactGeometry& geometry = detector_.geometry();
+  const bool seed_friction = seed_friction_;
 #pragma omp parallel for schedule(static) if (n > 4096)
   for (Eigen::Index k = 0; k < n; ++k) {
     Contact& c = contact[k];
-    if (mu > 0.0)  // §4.3.4: keep last iteration's resultant, Coulomb-capped
-      c.friction = coulomb_capped_friction(force_on_a_[k], c.normal, next[k], mu);
+    if (coulomb) c.friction = next_friction_[k];
+    if (seed_friction)  // §4.3.4: keep last iteration's resultant, split on the deformed normal
+      c.friction = coulomb_capped_friction(
+          force_on_a_[k], geometry.deformed_normal(c, u_a_[k], u_b_[k]), next[k], mu);
     c.force = next[k];
     force_on_a_[k] = c.force_on_a();  // gathered here, saving a pass over the contacts
   }
@@ -284,6 +334,7 @@ Result IterativeSolver::run() {
   std::string message;
   const bool energy_each_iteration = options_.energy_tolerance > 0.0;
   Eigen::VectorXd best_forces;
+  std::vector<Eigen::Vector3d> best_friction;
   double best_residual = INFINITY;
   auto last_progress = Clock::now();
   long iteration = 0;
@@ -304,10 +355,17 @@ Result IterativeSolver::run() {
     if (residual < best_residual) {
       best_residual = residual;
       best_forces.resize(static_cast<Eigen::Index>(contacts_.size()));
-      for (std::size_t k = 0; k < contacts_.size(); ++k) best_forces[k] = contacts_[k].force;
+      best_friction.resize(contacts_.size());
+      for (std::size_t k = 0; k < contacts_.size(); ++k) {
+        best_forces[k] = contacts_[k].force;
+        best_friction[k] = contacts_[k].friction;
+      }
     }
+    const bool friction_settled =
+        !coulomb_ || (friction_.stick_residual < options_.overlap_tolerance &&
+                      friction_.slip_residual < options_.overlap_tolerance);
     if (residuals_.overlap < options_.overlap_tolerance &&
-        residuals_.gap_force < options_.overlap_tolerance) {
+        residuals_.gap_force < options_.overlap_tolerance && friction_settled) {
       // Before stopping, make sure no contact outside the candidate list appeared.
       if (moved_beyond_margin()) {
         detect_contacts();
@@ -360,7 +418,7 @@ Result IterativeSolver::run() {
     // Report the best state seen, never a non-finite one.
     for (std::size_t k = 0; k < contacts_.size(); ++k) {
       contacts_[k].force = best_forces[k];
-      contacts_[k].friction.setZero();
+      contacts_[k].friction = best_friction[k];
     }
     forces_gathered_ = false;
     evaluate();
@@ -402,17 +460,18 @@ Result IterativeSolver::assemble(Clock::time_point start) {
   r.c_stable_limit = lambda_max_ > 0.0 ? 2.0 / lambda_max_ : 0.0;
   r.axial_load_dropped = superposition_.axial_load_dropped(contacts_, force_on_a_);
   r.warnings = warnings_;
-  if (scene_.contact.friction > 0.0)
-    r.warnings.push_back(
-        "contact normals do not turn (they are those of the undeformed fibres), so the friction "
-        "of §4.3.4, which keeps the previous resultant across a turn, exerts no force");
+  if (mu_ > 0.0) {
+    detector_.geometry().measure(contacts_, u_a_, u_b_, true);
+    r.friction = friction_figures(contacts_, mu_, scene_.contact.friction_model);
+  }
 
   r.stages.push_back("superposition");
   if (detector_.broad_phase()) r.stages.push_back("broad_phase");
   if (detector_.point_search()) r.stages.push_back("point_contacts");
   if (detector_.slicing()) r.stages.push_back("slices");
   if (detector_.walls()) r.stages.push_back("walls");
-  if (scene_.contact.friction > 0.0) r.stages.push_back("friction");
+  if (mu_ > 0.0)
+    r.stages.push_back(std::string("friction_") + to_string(scene_.contact.friction_model));
   if (options_.energy_tolerance > 0.0) r.stages.push_back("energy_criterion");
   r.stages.push_back(std::string("update_") + to_string(options_.rule));
 
@@ -427,7 +486,7 @@ Result IterativeSolver::assemble(Clock::time_point start) {
     r.fibres.push_back(std::move(fr));
   }
 
-  r.contacts = contact_results(contacts_, fibres_, scene_.walls, force_on_a_, u_a_, u_b_);
+  r.contacts = contact_results(contacts_, fibres_, scene_.walls, force_on_a_, u_a_, u_b_, mu_);
   r.walls = wall_results(contacts_, fibres_, scene_.walls);
   r.history = history_;
   assess_validity(r, fibres_);
@@ -440,11 +499,13 @@ Result IterativeSolver::assemble(Clock::time_point start) {
 Result solve_iteratively(const Scene& scene, const SolverOptions& options) {
   // A load path: each step starts from the contacts and forces the previous one ended with.
   std::vector<Contact> state;
+  SlipOrigins origins;
   Result r = solve_load_path(scene, [&](const Scene& step, const Result* previous) {
     IterativeSolver solver(step, options);
-    if (previous) solver.start_from(state);
+    if (previous) solver.start_from(state, origins);
     Result result = solver.run();
     state = solver.contacts();
+    origins = solver.end_state(result);
     return result;
   });
   replace_non_finite(r);

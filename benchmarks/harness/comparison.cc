@@ -27,13 +27,6 @@ bool needs_continuous_reference(const Scene& scene) {
   return tow >= 2;
 }
 
-std::string not_comparable_reason(const Scene& scene) {
-  if (scene.contact.friction > 0.0)
-    return "contact.friction > 0: the reference is frictionless, so the two solve different "
-           "problems";
-  return "";
-}
-
 Comparison compare_results(const std::string& scene, const Result& user, const Result& converged,
                            const Result& slices, const std::optional<Result>& continuous,
                            const std::string& reason) {
@@ -97,8 +90,7 @@ Comparison compare_scene(const Scene& scene, const Solvers& solvers,
     say("the reference with continuous line contact (the ground truth)");
     continuous = solvers.reference_continuous(scene);
   }
-  return compare_results(scene.name, user, converged, slices, continuous,
-                         not_comparable_reason(scene));
+  return compare_results(scene.name, user, converged, slices, continuous);
 }
 
 namespace {

@@ -61,9 +61,6 @@ double seed_stable_limit(const Scene& scene, const Solvers& solvers);
 /// Whether the scene has line or wall contacts to refine (tow fibres in pairs, or walls).
 bool needs_continuous_reference(const Scene& scene);
 
-/// Why a scene's physics is not what both solvers solve (friction today), or empty.
-std::string not_comparable_reason(const Scene& scene);
-
 /// Runs the four solutions of one scene and compares them. `progress` hears one line a run.
 Comparison compare_scene(const Scene& scene, const Solvers& solvers,
                          const std::function<void(const std::string&)>& progress = {});

@@ -15,6 +15,7 @@ std::vector<long> carry_over(const std::vector<Contact>& previous, std::vector<C
     const Contact& old = previous[it->second];
     found[i].force = old.force;
     found[i].friction = old.friction;
+    found[i].origin = old.origin;
     origin[i] = static_cast<long>(it->second);
     index.erase(it);
   }

@@ -11,6 +11,12 @@ enum class ContactKind : std::uint8_t { point, line, wall };
 
 const char* to_string(ContactKind kind);
 
+/// The point of the disk |F| ≤ radius nearest to z (the Coulomb disk of §4.3.4, Eq. 4.31).
+inline Eigen::Vector3d onto_coulomb_disk(const Eigen::Vector3d& z, double radius) {
+  const double size = z.norm();
+  return size > radius ? Eigen::Vector3d(size > 0.0 ? z * (radius / size) : z) : z;
+}
+
 /// One contact point: where it acts, its normal, its overlap and the force it carries.
 ///
 /// Sign conventions: `normal` is the unit vector from fibre A's centre towards fibre B's (for a
@@ -18,6 +24,12 @@ const char* to_string(ContactKind kind);
 /// d = (rA + rB) − n·(Bc − Ac) (Eq. 4.14 with the sign of §4.3.2: d > 0 overlaps). Fibre A receives
 /// −P·n + F, fibre B receives +P·n − F (a wall pushes its fibre with +P·n + F), where F is the
 /// friction force of §4.3.4.
+///
+/// Friction (DESIGN §2) acts in the tangential directions the two fibres can move in: for a slice
+/// or a wall station the line of the cross-section plane ⊥ n (one direction), for a crossing the
+/// plane ⊥ n (two). The slip s is the tangential part of the relative displacement since the step
+/// began, u_B − u_A (−u_A against a wall) minus its value at the step's start (`origin`); a force
+/// F on A removes slip (∂s/∂F = −(C_A + C_B)), as P removes overlap.
 struct Contact {
   ContactKind kind = ContactKind::point;
   int a = -1;      ///< fibre A
@@ -33,6 +45,22 @@ struct Contact {
   /// (Eq. 4.28), the Gauss weight in the continuous line contact.
   double weight = 1;
   bool normal_held = false;  ///< centres nearly coincident: a fixed normal was taken
+  /// Tangential directions: 0, 1 (`tangent`) or 2 (`tangent` and normal × tangent).
+  std::uint8_t tangents = 0;
+  Eigen::Vector3d tangent = Eigen::Vector3d::Zero();
+  Eigen::Vector3d origin = Eigen::Vector3d::Zero();  ///< relative displacement at the step's start
+  Eigen::Vector3d slip = Eigen::Vector3d::Zero();    ///< s, tangential, mm
+
+  /// The tangential part of a vector, in the directions this contact can slip in.
+  Eigen::Vector3d tangential(const Eigen::Vector3d& v) const {
+    if (tangents == 0) return Eigen::Vector3d::Zero();
+    if (tangents == 1) return v.dot(tangent) * tangent;
+    return v - v.dot(normal) * normal;
+  }
+  /// The relative displacement u_B − u_A of the contact's sides (−u_A against a wall), mm.
+  Eigen::Vector3d relative(const Eigen::Vector3d& u_a, const Eigen::Vector3d& u_b) const {
+    return kind == ContactKind::wall ? Eigen::Vector3d(-u_a) : Eigen::Vector3d(u_b - u_a);
+  }
 
   /// The force vector fibre A (or the walled fibre) receives, N.
   Eigen::Vector3d force_on_a() const {

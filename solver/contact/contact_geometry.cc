@@ -11,7 +11,24 @@ ContactGeometry::ContactGeometry(const std::vector<Fibre>& fibres,
   g2_ = cross_section_axes(axis_).second;
 }
 
+void ContactGeometry::set_tangents(Contact& c) const {
+  if (c.kind == ContactKind::point) {
+    c.tangents = 2;
+    c.tangent = cross_section_axes(c.normal).first;
+    return;
+  }
+  // Slices and wall stations: the cross-section plane's line ⊥ n (none if n is along the axis).
+  const Eigen::Vector3d t = axis_.cross(c.normal);
+  c.tangents = t.norm() > 1e-9 ? 1 : 0;
+  c.tangent = c.tangents ? Eigen::Vector3d(t.normalized()) : Eigen::Vector3d::Zero();
+}
+
 void ContactGeometry::place_on_undeformed(Contact& c) const {
+  place_normal(c);
+  set_tangents(c);
+}
+
+void ContactGeometry::place_normal(Contact& c) const {
   if (c.kind == ContactKind::wall) return;  // the wall's normal, at its station
   const Fibre& fa = fibres_[c.a];
   const Fibre& fb = fibres_[c.b];
@@ -46,16 +63,30 @@ double ContactGeometry::overlap_along_normal(const Contact& c, const Eigen::Vect
   return fibres_[c.a].radius + fibres_[c.b].radius - c.normal.dot(difference);
 }
 
+Eigen::Vector3d ContactGeometry::deformed_normal(const Contact& c, const Eigen::Vector3d& u_a,
+                                                 const Eigen::Vector3d& u_b) const {
+  if (c.kind == ContactKind::wall) return c.normal;
+  Eigen::Vector3d difference = fibres_[c.b].point(c.s_b) + u_b - (fibres_[c.a].point(c.s_a) + u_a);
+  if (c.kind == ContactKind::line) difference -= difference.dot(axis_) * axis_;
+  const double distance = difference.norm();
+  return distance > 1e-12 * (fibres_[c.a].radius + fibres_[c.b].radius)
+             ? Eigen::Vector3d(difference / distance)
+             : c.normal;
+}
+
 void ContactGeometry::measure(std::vector<Contact>& contacts,
                               const std::vector<Eigen::Vector3d>& u_a,
-                              const std::vector<Eigen::Vector3d>& u_b) const {
+                              const std::vector<Eigen::Vector3d>& u_b, bool slip) const {
   const int count = static_cast<int>(contacts.size());
   Contact* const contact = contacts.data();
   const Eigen::Vector3d* const side_a = u_a.data();
   const Eigen::Vector3d* const side_b = u_b.data();
 #pragma omp parallel for schedule(static) if (count > 4096)
-  for (int k = 0; k < count; ++k)
-    contact[k].overlap = overlap_along_normal(contact[k], side_a[k], side_b[k]);
+  for (int k = 0; k < count; ++k) {
+    Contact& c = contact[k];
+    c.overlap = overlap_along_normal(c, side_a[k], side_b[k]);
+    if (slip) c.slip = c.tangential(c.relative(side_a[k], side_b[k]) - c.origin);
+  }
 }
 
 }  // namespace fibrecheck

@@ -1,5 +1,6 @@
 #include "contact_results.h"
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <tuple>
@@ -11,7 +12,7 @@ std::vector<ContactResult> contact_results(const std::vector<Contact>& contacts,
                                            const std::vector<WallSpec>& walls,
                                            const std::vector<Eigen::Vector3d>& force_on_a,
                                            const std::vector<Eigen::Vector3d>& u_a,
-                                           const std::vector<Eigen::Vector3d>& u_b) {
+                                           const std::vector<Eigen::Vector3d>& u_b, double mu) {
   std::vector<ContactResult> results;
   std::map<std::tuple<int, int, int>, std::size_t> group;
   for (std::size_t k = 0; k < contacts.size(); ++k) {
@@ -33,14 +34,50 @@ std::vector<ContactResult> contact_results(const std::vector<Contact>& contacts,
                   ? Eigen::Vector3d(ac - fibres[c.a].radius * c.normal)
                   : Eigen::Vector3d(0.5 * (ac + fibres[c.b].point(c.s_b) + u_b[k]));
     p.force = force_on_a[k];
+    p.friction_force = c.friction;
+    p.normal_force = p.force - c.friction;
+    if (mu > 0.0) p.state = slips(c, mu) ? "slip" : "stick";
     results[it->second].points.push_back(p);
   }
   for (ContactResult& cr : results) {
-    Eigen::Vector3d total = Eigen::Vector3d::Zero();
-    for (const ContactPoint& p : cr.points) total += p.force;
+    Eigen::Vector3d total = Eigen::Vector3d::Zero(), normal = total, friction = total;
+    for (const ContactPoint& p : cr.points) {
+      total += p.force;
+      normal += p.normal_force;
+      friction += p.friction_force;
+    }
     cr.total_force = total.norm();
+    cr.normal_force = normal.norm();
+    cr.friction_force = friction.norm();
   }
   return results;
+}
+
+bool slips(const Contact& c, double mu) {
+  return c.force > 0.0 && c.friction.norm() >= (1.0 - 1e-9) * mu * c.force;
+}
+
+FrictionFigures friction_figures(const std::vector<Contact>& contacts, double mu,
+                                 FrictionModel model) {
+  FrictionFigures f;
+  f.model = to_string(model);
+  f.mu = mu;
+  for (const Contact& c : contacts) {
+    const double size = c.friction.norm();
+    f.cone_residual = std::max(f.cone_residual, size - mu * std::max(c.force, 0.0));
+    if (!(c.force > 0.0)) continue;
+    if (!slips(c, mu)) {
+      ++f.sticking;
+      f.stick_residual = std::max(f.stick_residual, c.slip.norm());
+      continue;
+    }
+    ++f.slipping;
+    const Eigen::Vector3d direction = size > 0.0 ? Eigen::Vector3d(c.friction / size) : c.slip;
+    const double along = c.slip.dot(direction);
+    f.slip_residual =
+        std::max(f.slip_residual, (c.slip - along * direction).norm() + std::max(0.0, -along));
+  }
+  return f;
 }
 
 std::vector<WallResult> wall_results(const std::vector<Contact>& contacts,

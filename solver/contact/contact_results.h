@@ -19,7 +19,18 @@ std::vector<ContactResult> contact_results(const std::vector<Contact>& contacts,
                                            const std::vector<WallSpec>& walls,
                                            const std::vector<Eigen::Vector3d>& force_on_a,
                                            const std::vector<Eigen::Vector3d>& u_a,
-                                           const std::vector<Eigen::Vector3d>& u_b);
+                                           const std::vector<Eigen::Vector3d>& u_b,
+                                           double mu = 0.0);
+
+/// True when a contact that carries force slips: its friction force is on the Coulomb circle,
+/// |F| = μN (to 1e-9 relative).
+bool slips(const Contact& contact, double mu);
+
+/// Coulomb's conditions at every contact that carries force (DESIGN §2, `coulomb` model): a
+/// sticking point must not slip, a slipping one must slip along its friction force, and no
+/// friction force may exceed μN (contacts without force must carry none).
+FrictionFigures friction_figures(const std::vector<Contact>& contacts, double mu,
+                                 FrictionModel model);
 
 /// Each wall's total normal reaction and its pressure over the tow's footprint on the wall.
 std::vector<WallResult> wall_results(const std::vector<Contact>& contacts,

@@ -337,18 +337,6 @@ TEST(ReferenceSolver, OuterIterationCapGivesMaxIterations) {
   EXPECT_FALSE(r.contacts.empty());
 }
 
-// Friction is not modelled by the reference: the scene runs frictionless and the result says so.
-TEST(ReferenceSolver, FrictionIsReportedAsNotModelled) {
-  Scene s = testing::crossing(0.5, 0.5, 1e-3);
-  s.contact.friction = 0.3;
-  const Result r = solve_reference(s);
-  ASSERT_EQ(r.status, Status::converged);
-  EXPECT_NE(std::find(r.stages.begin(), r.stages.end(), "friction_not_modelled"), r.stages.end());
-  const Scene frictionless = testing::crossing(0.5, 0.5, 1e-3);
-  EXPECT_NEAR(force_between(r, "A", "B"), force_between(solve_reference(frictionless), "A", "B"),
-              1e-15);
-}
-
 // The beams for ParaView: a .vtu file with the deflections, moments and displacement vectors.
 TEST(ReferenceSolver, WritesTheBeamsForParaView) {
   ReferenceOptions options;

@@ -102,13 +102,13 @@ TEST(IterativeSolver, ScenesRunOnlyTheStagesTheyNeed) {
   EXPECT_FALSE(has_stage(crossing, "slices"));
   EXPECT_FALSE(has_stage(crossing, "broad_phase"));
   EXPECT_FALSE(has_stage(crossing, "walls"));
-  EXPECT_FALSE(has_stage(crossing, "friction"));
+  EXPECT_FALSE(has_stage(crossing, "friction_coulomb"));
   const Result parallel = solve(testing::parallel(1e-4, 20));
   EXPECT_TRUE(has_stage(parallel, "slices"));
   EXPECT_FALSE(has_stage(parallel, "point_contacts"));
   Scene with_friction = testing::crossing(0.5, 0.5, 1e-3);
   with_friction.contact.friction = 0.3;
-  EXPECT_TRUE(has_stage(solve(with_friction), "friction"));
+  EXPECT_TRUE(has_stage(solve(with_friction), "friction_coulomb"));
   TowOptions tow;
   tow.fibres = 7;
   tow.slices = 20;
@@ -117,18 +117,6 @@ TEST(IterativeSolver, ScenesRunOnlyTheStagesTheyNeed) {
   EXPECT_TRUE(has_stage(t, "walls"));
   EXPECT_TRUE(has_stage(t, "slices"));
   EXPECT_FALSE(has_stage(t, "point_contacts"));
-}
-
-// With normals that do not turn, friction has nothing to hold: the answer equals the frictionless
-// one (Eqs. 4.29–4.33 keep the previous resultant's tangential part, which is zero here).
-TEST(IterativeSolver, FrictionWithFixedNormalsChangesNothing) {
-  Scene s = testing::crossing(0.3, 0.6, 1e-3);
-  const Result frictionless = solve(s);
-  s.contact.friction = 0.4;
-  const Result with_friction = solve(s);
-  ASSERT_EQ(with_friction.status, Status::converged);
-  EXPECT_NEAR(with_friction.contacts[0].total_force, frictionless.contacts[0].total_force,
-              1e-12 * frictionless.contacts[0].total_force);
 }
 
 TEST(IterativeSolver, RunsAreDeterministic) {

@@ -1,0 +1,79 @@
+// Coulomb friction through the iterative solver: the closed forms of DESIGN §7 (written once in
+// friction_ground_truths.h), every update rule, and the seed's own friction rule beside it.
+#include <gtest/gtest.h>
+
+#include "friction_ground_truths.h"
+#include "iterative_solver.h"
+
+namespace fibrecheck {
+namespace {
+
+Result solve_with(const Scene& scene, UpdateRule rule) {
+  Scene s = scene;
+  s.solver.rule = rule;
+  if (rule == UpdateRule::seed) s.solver.c = 0.01;  // below 2/λmax of these scenes
+  validate_scene(s);
+  return solve_iteratively(s, SolverOptions::from_scene(s));
+}
+
+Result solve(const Scene& scene) {
+  return solve_with(scene, UpdateRule::accelerated);
+}
+
+// The overlap tolerance is 1e-9 mm on the crossings (1e-12 on the parallel fibres): forces and
+// shifts within 1e-4 of the closed form.
+constexpr double kTolerance = 1e-4;
+
+TEST(CoulombFriction, CrossingSticksBelowMuNAndSlipsAbove) {
+  testing::check_crossing_stick_and_slip(solve, kTolerance);
+}
+
+TEST(CoulombFriction, EveryRuleProjectsOntoTheCoulombDisk) {
+  for (UpdateRule rule : {UpdateRule::seed, UpdateRule::automatic}) {
+    SCOPED_TRACE(to_string(rule));
+    testing::check_crossing_stick_and_slip([&](const Scene& s) { return solve_with(s, rule); },
+                                           kTolerance);
+  }
+}
+
+TEST(CoulombFriction, ZeroMuIsFrictionless) {
+  testing::check_zero_friction(solve, kTolerance);
+}
+
+TEST(CoulombFriction, HugeMuIsBonded) {
+  testing::check_bonded_limit(solve, kTolerance);
+}
+
+TEST(CoulombFriction, ParallelFibresMoveTogetherOrSlipWithMuTimesTheLineForce) {
+  testing::check_parallel_shear(solve, kTolerance);
+}
+
+TEST(CoulombFriction, UnloadingLeavesTheHysteresisWidthTwoMuN) {
+  testing::check_hysteresis(solve, kTolerance);
+}
+
+TEST(CoulombFriction, TheOrderOfLoadsMatters) {
+  testing::check_path_dependence(solve, kTolerance);
+}
+
+// The seed's rule (§4.3.4, Eqs. 4.29–4.33): the previous resultant split on the deformed centres'
+// normal, capped. Under a side load below μN the centres' normal turns as B moves, so the rule
+// drives the friction to the cap: it never lets the contact stick as Coulomb's law does, and B
+// ends where the capped friction leaves it, not at rest.
+TEST(SeedFrictionRule, CapsTheKeptResultantButDoesNotStick) {
+  const testing::CrossingFigures x = testing::crossing_figures();
+  const double mu = 0.3, H = 0.5 * mu * x.N;
+  Scene s = testing::sheared_crossing(H, mu);
+  s.contact.friction_model = FrictionModel::seed;
+  const Result r = solve(s);
+  ASSERT_EQ(r.status, Status::converged) << r.message;
+  ASSERT_TRUE(r.friction.has_value());
+  EXPECT_EQ(r.friction->model, "seed");
+  const ContactResult& c = testing::only_contact(r);
+  EXPECT_LE(c.friction_force, mu * c.normal_force * (1 + 1e-12));
+  EXPECT_GT(std::fabs(testing::crossing_shift(r)), 1e-3 * H * x.C);
+  EXPECT_NE(std::find(r.stages.begin(), r.stages.end(), "friction_seed"), r.stages.end());
+}
+
+}  // namespace
+}  // namespace fibrecheck
