@@ -55,7 +55,7 @@ struct NaturalMap {
         Eigen::Vector2d zt = Eigen::Vector2d::Zero();
         for (Eigen::Index i = 1; i < m; ++i)
           zt[i - 1] = frozen[o + i] ? 0.0 : r[o + i] + rho[j] * w[o + i];
-        const double radius = p.mu * zn;
+        const double radius = p.bounds.size() ? p.bounds[static_cast<Eigen::Index>(j)] : p.mu * zn;
         if (zt.norm() > radius) {
           state[j] = State::slip;
           const Eigen::Vector2d on = zt * (radius / zt.norm());
@@ -89,6 +89,8 @@ FrictionalSolve solve_frictional(const FrictionalProblem& p, double tolerance, i
     return sum;
   };
   double current = merit(map);
+  Eigen::VectorXd best = r;
+  double best_merit = current, best_residual = residual;
   for (result.newton_steps = 0; result.newton_steps < max_steps; ++result.newton_steps) {
     if (residual <= tolerance) break;
     // The closed contacts' components, in order.
@@ -134,11 +136,15 @@ FrictionalSolve solve_frictional(const FrictionalProblem& p, double tolerance, i
           zt[i - 1] = map.frozen[o + i] ? 0.0 : r[o + i] + rho * map.w[o + i];
         const double size = zt.norm();
         const Eigen::VectorXd unit = zt / size;
-        const Eigen::MatrixXd K = (p.mu * zn / size) * (Eigen::MatrixXd::Identity(k - 1, k - 1) -
-                                                        unit * unit.transpose());
+        const bool tresca = p.bounds.size() > 0;
+        const double radius = tresca ? p.bounds[static_cast<Eigen::Index>(j)] : p.mu * zn;
+        const Eigen::MatrixXd K =
+            (radius / size) * (Eigen::MatrixXd::Identity(k - 1, k - 1) - unit * unit.transpose());
         A.block(1, 1, k - 1, k - 1) = Eigen::MatrixXd::Identity(k - 1, k - 1) - K;
-        A.block(1, 0, k - 1, 1) = -p.mu * unit;
-        B.block(1, 0, k - 1, 1) = rho * p.mu * unit;
+        // Coulomb's radius μ·z_n moves with the normal part; Tresca's is fixed.
+        const double coupling = tresca ? 0.0 : p.mu;
+        A.block(1, 0, k - 1, 1) = -coupling * unit;
+        B.block(1, 0, k - 1, 1) = rho * coupling * unit;
         B.block(1, 1, k - 1, k - 1) = rho * K;
         for (Eigen::Index i = 1; i < k; ++i)
           if (map.frozen[o + i]) {
@@ -191,10 +197,26 @@ FrictionalSolve solve_frictional(const FrictionalProblem& p, double tolerance, i
       }
     }
     if (!accepted) {
-      r += step;
-      residual = map.evaluate(r);
+      // No fraction of the step lowers ‖Φ‖: a set change the Newton model cannot see. Take a
+      // small step (1/1000 of it) so that the sets may change, but never a large one.
+      trial = r + 1e-3 * step;
+      NaturalMap next = map;
+      residual = next.evaluate(trial);
+      r = trial;
+      map = std::move(next);
       current = merit(map);
+      ++result.stalled_steps;
     }
+    if (current < best_merit) {
+      best_merit = current;
+      best = r;
+      best_residual = residual;
+    }
+  }
+  if (residual > tolerance && best.size() == r.size()) {
+    // Not settled: return the best state seen, never a wild last one.
+    r = best;
+    residual = best_residual;
   }
   result.residual = residual;
   result.settled = residual <= tolerance;

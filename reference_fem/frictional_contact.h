@@ -21,6 +21,9 @@ struct FrictionalProblem {
   double mu = 0.0;
   /// Contacts nothing can move (both sides pinned): no reaction.
   std::vector<char> excluded;
+  /// Tresca's law instead of Coulomb's where given: contact j's disk radius is bounds[j] (N),
+  /// whatever its normal force (the inner problem of a Tresca fixed point, a convex QP).
+  Eigen::VectorXd bounds;
 };
 
 struct FrictionalSolve {
@@ -28,6 +31,7 @@ struct FrictionalSolve {
   int newton_steps = 0;
   double residual = 0.0;  ///< mm, the largest violation of Coulomb's law left (as ‖Φ_j‖/ρ_j)
   bool singular = false;  ///< a Newton system could not be solved even regularised
+  int stalled_steps = 0;  ///< steps where no fraction of the Newton step lowered ‖Φ‖
 };
 
 /// Solves the problem exactly by a semismooth Newton method on the natural map of Coulomb's law

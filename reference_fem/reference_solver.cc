@@ -271,6 +271,8 @@ class ReferenceSolver {
   FrictionalProblem friction_problem_;
   Eigen::VectorXd reaction_;  ///< its last answer (warm start of the next outer iteration)
   long newton_steps_ = 0;
+  long tresca_updates_ = 0;
+  static constexpr int kMaxTrescaUpdates = 100;
 };
 
 ReferenceSolver::ReferenceSolver(const Scene& scene, const ReferenceOptions& options)
@@ -674,15 +676,57 @@ void ReferenceSolver::solve_friction(const std::vector<char>& excluded) {
     if (c.tangents >= 1) r[o + 1] = c.tangent.dot(c.friction);
     if (c.tangents == 2) r[o + 2] = c.normal.cross(c.tangent).dot(c.friction);
   }
-  const FrictionalSolve solved = solve_frictional(problem, threshold_, 200, r);
-  newton_steps_ += solved.newton_steps;
-  if (!solved.settled) {
+  // A Tresca fixed point: the disk radii fixed at μ times the normal forces, the convex problem
+  // solved exactly, the radii updated, until they produce the normal forces they assumed (to the
+  // slip they could still cause, W_tt·Δg, below the threshold). A Newton method on Coulomb's law
+  // itself cycled between sticking and slipping sets on compacted tows.
+  problem.bounds.resize(n);
+  for (Eigen::Index k = 0; k < n; ++k)
+    problem.bounds[k] = mu_ * std::max(r[problem.offset[k]], 0.0);
+  // The radii settle to the round-off of the normal forces (W's condition times machine epsilon):
+  // far below the slips the loads cause.
+  double slip_scale = 0.0;
+  for (Eigen::Index k = 0; k < n; ++k)
+    for (Eigen::Index i = problem.offset[k] + 1; i < problem.offset[k + 1]; ++i)
+      slip_scale = std::max(slip_scale, std::fabs(problem.q[i]));
+  const double settled = std::max(threshold_, 1e-9 * slip_scale);
+  FrictionalSolve solved;
+  double change = INFINITY;
+  int updates = 0;
+  for (updates = 1; updates <= kMaxTrescaUpdates; ++updates) {
+    solved = solve_frictional(problem, threshold_, 100, r);
+    newton_steps_ += solved.newton_steps;
+    if (!solved.settled) break;
+    change = 0.0;
+    for (Eigen::Index k = 0; k < n; ++k) {
+      const Eigen::Index o = problem.offset[k];
+      const double g = mu_ * std::max(r[o], 0.0);
+      // A contact that slipped on its old circle slips on the new one.
+      const Eigen::Index t = problem.offset[k + 1] - o - 1;
+      const double size = r.segment(o + 1, t).norm();
+      if (problem.bounds[k] > 0.0 && size >= (1.0 - 1e-9) * problem.bounds[k])
+        r.segment(o + 1, t) *= g / size;
+      double compliance = 0.0;
+      for (Eigen::Index i = o + 1; i < problem.offset[k + 1]; ++i)
+        compliance = std::max(compliance, problem.W.coeff(i, i));
+      change = std::max(change, std::fabs(g - problem.bounds[k]) * compliance);
+      problem.bounds[k] = g;
+    }
+    if (change <= settled) break;
+  }
+  tresca_updates_ += std::min(updates, kMaxTrescaUpdates);
+  if (!solved.settled || change > settled) {
     std::ostringstream out;
     out.precision(3);
-    out << "the frictional contact problem did not settle: after " << solved.newton_steps
-        << " Newton steps Coulomb's law is still violated by " << solved.residual
-        << " mm (mu = " << mu_ << "; its solution is unique only for small mu, and a Newton "
-        << "method may cycle between sticking and slipping sets where it is not)";
+    if (!solved.settled)
+      out << "the frictional contact problem did not settle: after " << solved.newton_steps
+          << " Newton steps on its Tresca problem Coulomb's law is still violated by "
+          << solved.residual << " mm";
+    else
+      out << "the Tresca fixed point of the frictional contact problem did not settle: after "
+          << kMaxTrescaUpdates << " updates the disk radii still move the slips by " << change
+          << " mm";
+    out << " (mu = " << mu_ << "; the solution is unique only for small mu)";
     trouble_ = out.str();
     friction_unsettled_ = true;
   }
@@ -802,6 +846,7 @@ void ReferenceSolver::output_results(Result& r) {
   r.contacts = contact_results(contacts_, fibres_, scene_.walls, force_on_a_, u_a, u_b, mu_);
   if (mu_ > 0.0) {
     r.friction = friction_figures(contacts_, mu_, FrictionModel::coulomb);
+    r.friction->fixed_point_updates = tresca_updates_;
     end_state_ = SlipOrigins(contacts_, u_a, u_b, r);
   }
   r.walls = wall_results(contacts_, fibres_, scene_.walls);
@@ -875,7 +920,7 @@ Result ReferenceSolver::run() {
       break;
     }
   }
-  if (r.status == Status::max_iterations) {
+  if (r.status == Status::max_iterations && !friction_unsettled_) {
     r.message = "the candidates still changed after " +
                 std::to_string(options_.max_outer_iterations) + " outer iterations";
     // The last solve used the candidates before the final detection: mesh them again.
@@ -917,7 +962,9 @@ Result ReferenceSolver::run() {
   timing.precision(3);
   timing << "unknowns " << r.finite_elements->unknowns << ", active-set passes "
          << active_set_iterations_;
-  if (mu_ > 0.0) timing << ", friction Newton steps " << newton_steps_;
+  if (mu_ > 0.0)
+    timing << ", friction: Tresca updates " << tresca_updates_ << ", Newton steps "
+           << newton_steps_;
   if (options_.beam_solver == BeamSolver::cg_amg)
     timing << ", CG iterations " << (model_ ? model_->cg_iterations() : 0) << " (last mesh)";
   timing << "; wall time per phase (s):";

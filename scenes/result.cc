@@ -183,7 +183,8 @@ json result_to_json(const Result& r) {
                      {"slip_residual", r.friction->slip_residual},
                      {"cone_residual", r.friction->cone_residual},
                      {"sticking", r.friction->sticking},
-                     {"slipping", r.friction->slipping}};
+                     {"slipping", r.friction->slipping},
+                     {"fixed_point_updates", r.friction->fixed_point_updates}};
   j["stages"] = r.stages;
   j["warnings"] = r.warnings;
   j["fibres"] = json::array();
@@ -284,6 +285,7 @@ Result result_from_json(const json& j, const std::string& source) {
       figures.cone_residual = f.at("cone_residual").get<double>();
       figures.sticking = f.value("sticking", 0L);
       figures.slipping = f.value("slipping", 0L);
+      figures.fixed_point_updates = f.value("fixed_point_updates", 0L);
     }
     r.stages = j.at("stages").get<std::vector<std::string>>();
     r.warnings = j.value("warnings", std::vector<std::string>{});

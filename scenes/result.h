@@ -123,6 +123,9 @@ struct FrictionFigures {
   double cone_residual = 0.0;
   long sticking = 0;  ///< points carrying force that stick
   long slipping = 0;  ///< and that slip
+  /// Outer steps of the frictional solve: the iterative solver's Tresca radius updates, the
+  /// reference's Newton steps.
+  long fixed_point_updates = 0;
 };
 
 /// The result of either solver (DESIGN §5); the harness cannot tell the solvers apart.

@@ -49,6 +49,8 @@ Scene generate_tow(const TowOptions& o) {
     throw InputError(source, "steps", "must be a whole number from 0 to 1000");
   if (!(o.compaction > 0.0 && o.compaction <= 1.0))
     throw InputError(source, "compaction", "must lie in (0, 1]");
+  if (!(o.friction >= 0.0 && std::isfinite(o.friction)))
+    throw InputError(source, "friction", "must be a finite number, not negative");
 
   const double r = o.radius;
   const double contact = 2.0 * r * (1.0 + o.clearance);
@@ -159,6 +161,7 @@ Scene generate_tow(const TowOptions& o) {
   const double written = o.steps > 0 ? 1.0 : o.compaction;
   for (int k = 1; k <= o.steps; ++k)
     scene.steps.push_back({1.0 - (1.0 - o.compaction) * k / o.steps, 1.0});
+  scene.contact.friction = o.friction;
   for (std::size_t i = 0; i < placed.size(); ++i) {
     const Eigen::Vector2d y0 = centre + written * (placed[i].y0 - centre);
     const Eigen::Vector2d y1 = centre + written * (placed[i].y1 - centre);

@@ -29,6 +29,7 @@ struct TowOptions {
   /// 0: the tow as compacted. K > 0: the tow before compaction (walls at the uncompacted
   /// section) with a load path of K steps F_k = 1 − (1 − F)·k/K, k = 1…K, the last the compaction.
   int steps = 0;
+  double friction = 0.0;  ///< Coulomb coefficient μ of the scene's contacts
 };
 
 /// Throws InputError (field = the option's name) for impossible options or when the fibres cannot

@@ -98,6 +98,7 @@ class IterativeSolver {
   std::optional<std::string> find_unresolvable() const;
   void evaluate();
   void update_forces();
+  bool update_tresca_bounds();
   void gather_forces();
   Result assemble(Clock::time_point start);
   bool record_history(long iteration) const;
@@ -115,7 +116,11 @@ class IterativeSolver {
   bool coulomb_;        ///< Coulomb friction: the tangential force projected onto μP's disk
   bool seed_friction_;  ///< the seed's friction rule (Eqs. 4.29–4.33)
   SlipOrigins origins_;
-  FrictionFigures friction_;
+  /// Coulomb friction as a Tresca fixed point: the disk radius of each contact is μ times its
+  /// normal force when the last inner problem settled; the inner problem (radii fixed) is convex.
+  Eigen::VectorXd bound_;
+  long tresca_updates_ = 0;
+  FrictionFigures tresca_;  ///< the inner problem's residuals at the last evaluation
 
   std::vector<Contact> contacts_;
   std::vector<Eigen::Vector3d> force_on_a_, u_a_, u_b_;
@@ -171,6 +176,8 @@ void IterativeSolver::detect_contacts() {
   Eigen::VectorXd iterate(static_cast<Eigen::Index>(found.size()));
   Eigen::VectorXd previous_iterate(iterate.size());
   std::vector<Eigen::Vector3d> friction_iterate(coulomb_ ? found.size() : 0);
+  Eigen::VectorXd bound = Eigen::VectorXd::Zero(coulomb_ ? iterate.size() : 0);
+  const bool had_bounds = bound_.size() == static_cast<Eigen::Index>(contacts_.size());
   std::vector<Eigen::Vector3d> previous_friction(friction_iterate.size());
   const bool had_friction_momentum = friction_iterate_.size() == contacts_.size();
   for (std::size_t i = 0; i < found.size(); ++i) {
@@ -178,6 +185,7 @@ void IterativeSolver::detect_contacts() {
     iterate[i] = known ? iterate_[origin[i]] : found[i].force;
     previous_iterate[i] = known ? previous_forces_[origin[i]] : found[i].force;
     if (!coulomb_) continue;
+    bound[i] = had_bounds && origin[i] >= 0 ? bound_[origin[i]] : mu_ * found[i].force;
     const bool known_friction = had_friction_momentum && origin[i] >= 0;
     friction_iterate[i] = known_friction ? friction_iterate_[origin[i]] : found[i].friction;
     previous_friction[i] = known_friction ? previous_friction_[origin[i]] : found[i].friction;
@@ -187,6 +195,7 @@ void IterativeSolver::detect_contacts() {
   iterate_ = std::move(iterate);
   previous_forces_ = std::move(previous_iterate);
   friction_iterate_ = std::move(friction_iterate);
+  bound_ = std::move(bound);
   previous_friction_ = std::move(previous_friction);
   grid_u_at_detection_ = grid_u_;
   if (unchanged && attached_) return;
@@ -237,7 +246,32 @@ void IterativeSolver::evaluate() {
   superposition_.contact_displacements(contacts_, force_on_a_, true, u_a_, u_b_, &exact_energy_);
   detector_.geometry().measure(contacts_, u_a_, u_b_, coulomb_);
   residuals_ = measure_residuals(contacts_);
-  if (mu_ > 0.0) friction_ = friction_figures(contacts_, mu_, scene_.contact.friction_model);
+  if (coulomb_) tresca_ = tresca_figures(contacts_, bound_);
+}
+
+bool IterativeSolver::update_tresca_bounds() {
+  // Coulomb holds once the radii are μ times the normal forces they produced: each radius's change
+  // times the contact's compliance is the slip it could still cause.
+  double change = 0.0;
+  for (std::size_t k = 0; k < contacts_.size(); ++k) {
+    const double g = mu_ * contacts_[k].force;
+    const Eigen::Index i = static_cast<Eigen::Index>(k);
+    change = std::max(change, std::fabs(g - bound_[i]) * self_compliance(contacts_[k], fibres_));
+    // A contact that slipped on its old circle slips on the new one.
+    Eigen::Vector3d& F = contacts_[k].friction;
+    const double size = F.norm();
+    if (bound_[i] > 0.0 && size >= (1.0 - 1e-9) * bound_[i]) F *= g / size;
+    if (coulomb_ && friction_iterate_.size() == contacts_.size()) friction_iterate_[k] = F;
+    bound_[i] = g;
+  }
+  ++tresca_updates_;
+  if (change < options_.overlap_tolerance) return false;
+  // A new inner problem: the momentum of the last one does not carry over.
+  momentum_t_ = 1.0;
+  previous_forces_ = iterate_;
+  previous_friction_ = friction_iterate_;
+  divergence_.reset();
+  return true;
 }
 
 void IterativeSolver::update_forces() {
@@ -251,6 +285,7 @@ void IterativeSolver::update_forces() {
   next.resize(n);
   if (coulomb) next_friction_.resize(n);
   Eigen::Vector3d* const next_friction = next_friction_.data();
+  const double* const bound = bound_.data();
   // §4.3.2: P' = max(0, P + c·d); under rule seed slices take c/n (Eq. 4.28). Coulomb friction
   // steps the same way on the slip, F' = the point of the disk |F| ≤ μP' nearest to F + c·s
   // (Eq. 4.31). The accelerated rule's restart test (gradient restart: −(d, s)·(r_{k+1} − r_k) > 0)
@@ -263,7 +298,7 @@ void IterativeSolver::update_forces() {
     next[k] = std::max(0.0, c.force + step * c.overlap);
     if (accelerated) uphill += -c.overlap * (next[k] - iterate_[k]);
     if (!coulomb) continue;
-    next_friction[k] = onto_coulomb_disk(c.friction + step * c.slip, mu * next[k]);
+    next_friction[k] = onto_coulomb_disk(c.friction + step * c.slip, bound[k]);
     if (accelerated) uphill += -c.slip.dot(next_friction[k] - friction_iterate_[k]);
   }
   if (accelerated) {
@@ -290,7 +325,7 @@ void IterativeSolver::update_forces() {
       for (Eigen::Index k = 0; k < n; ++k)
         next_friction_[k] = onto_coulomb_disk(
             friction_iterate_[k] + beta * (friction_iterate_[k] - previous_friction_[k]),
-            mu * next[k]);
+            bound_[k]);
     }
   }
   const ContactGeometry& geometry = detector_.geometry();
@@ -340,7 +375,10 @@ Result IterativeSolver::run() {
   long iteration = 0;
   for (iteration = 1; iteration <= options_.max_iterations; ++iteration) {
     evaluate();
-    const double residual = residuals_.total();
+    // With Coulomb friction the slips must settle too: they are part of the residual watched.
+    const double residual =
+        coulomb_ ? std::max({residuals_.total(), tresca_.stick_residual, tresca_.slip_residual})
+                 : residuals_.total();
     double energy = NAN;
     if (energy_each_iteration || record_history(iteration))
       energy = superposition_.trapezium_energy(force_on_a_, scene_.contact.slices);
@@ -362,8 +400,8 @@ Result IterativeSolver::run() {
       }
     }
     const bool friction_settled =
-        !coulomb_ || (friction_.stick_residual < options_.overlap_tolerance &&
-                      friction_.slip_residual < options_.overlap_tolerance);
+        !coulomb_ || (tresca_.stick_residual < options_.overlap_tolerance &&
+                      tresca_.slip_residual < options_.overlap_tolerance);
     if (residuals_.overlap < options_.overlap_tolerance &&
         residuals_.gap_force < options_.overlap_tolerance && friction_settled) {
       // Before stopping, make sure no contact outside the candidate list appeared.
@@ -371,6 +409,7 @@ Result IterativeSolver::run() {
         detect_contacts();
         continue;
       }
+      if (coulomb_ && update_tresca_bounds()) continue;
       status = Status::converged;
       criterion = Criterion::contact;
       break;
@@ -463,6 +502,7 @@ Result IterativeSolver::assemble(Clock::time_point start) {
   if (mu_ > 0.0) {
     detector_.geometry().measure(contacts_, u_a_, u_b_, true);
     r.friction = friction_figures(contacts_, mu_, scene_.contact.friction_model);
+    r.friction->fixed_point_updates = tresca_updates_;
   }
 
   r.stages.push_back("superposition");

@@ -57,27 +57,54 @@ bool slips(const Contact& c, double mu) {
   return c.force > 0.0 && c.friction.norm() >= (1.0 - 1e-9) * mu * c.force;
 }
 
-FrictionFigures friction_figures(const std::vector<Contact>& contacts, double mu,
-                                 FrictionModel model) {
+namespace {
+
+/// Coulomb's (or Tresca's) conditions with the disk radius `radius(k)` at each contact `active(k)`.
+template <class Radius, class Active>
+FrictionFigures disk_figures(const std::vector<Contact>& contacts, Radius radius, Active active) {
   FrictionFigures f;
-  f.model = to_string(model);
-  f.mu = mu;
-  for (const Contact& c : contacts) {
-    const double size = c.friction.norm();
-    f.cone_residual = std::max(f.cone_residual, size - mu * std::max(c.force, 0.0));
-    if (!(c.force > 0.0)) continue;
-    if (!slips(c, mu)) {
+  for (std::size_t k = 0; k < contacts.size(); ++k) {
+    const Contact& c = contacts[k];
+    const double size = c.friction.norm(), g = std::max(radius(k), 0.0);
+    f.cone_residual = std::max(f.cone_residual, size - g);
+    if (!active(k)) continue;
+    if (!(g > 0.0)) {  // no friction can act: free to slip any way
+      ++f.slipping;
+      continue;
+    }
+    if (size < (1.0 - 1e-9) * g) {
       ++f.sticking;
       f.stick_residual = std::max(f.stick_residual, c.slip.norm());
       continue;
     }
     ++f.slipping;
-    const Eigen::Vector3d direction = size > 0.0 ? Eigen::Vector3d(c.friction / size) : c.slip;
+    const Eigen::Vector3d direction = c.friction / size;
     const double along = c.slip.dot(direction);
     f.slip_residual =
         std::max(f.slip_residual, (c.slip - along * direction).norm() + std::max(0.0, -along));
   }
   return f;
+}
+
+}  // namespace
+
+FrictionFigures friction_figures(const std::vector<Contact>& contacts, double mu,
+                                 FrictionModel model) {
+  FrictionFigures f = disk_figures(
+      contacts, [&](std::size_t k) { return mu * contacts[k].force; },
+      [&](std::size_t k) { return contacts[k].force > 0.0; });
+  f.model = to_string(model);
+  f.mu = mu;
+  return f;
+}
+
+FrictionFigures tresca_figures(const std::vector<Contact>& contacts,
+                               const Eigen::VectorXd& bounds) {
+  return disk_figures(
+      contacts, [&](std::size_t k) { return bounds[static_cast<Eigen::Index>(k)]; },
+      [&](std::size_t k) {
+        return contacts[k].force > 0.0 || bounds[static_cast<Eigen::Index>(k)] > 0.0;
+      });
 }
 
 std::vector<WallResult> wall_results(const std::vector<Contact>& contacts,

@@ -32,6 +32,10 @@ bool slips(const Contact& contact, double mu);
 FrictionFigures friction_figures(const std::vector<Contact>& contacts, double mu,
                                  FrictionModel model);
 
+/// The same conditions for Tresca's law: the disk radius of contact k is `bounds[k]` (N) instead
+/// of μN (the inner problem of a Tresca fixed point).
+FrictionFigures tresca_figures(const std::vector<Contact>& contacts, const Eigen::VectorXd& bounds);
+
 /// Each wall's total normal reaction and its pressure over the tow's footprint on the wall.
 std::vector<WallResult> wall_results(const std::vector<Contact>& contacts,
                                      const std::vector<Fibre>& fibres,
