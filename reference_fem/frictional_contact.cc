@@ -91,6 +91,7 @@ FrictionalSolve solve_frictional(const FrictionalProblem& p, double tolerance, i
   double current = merit(map);
   Eigen::VectorXd best = r;
   double best_merit = current, best_residual = residual;
+  int nonmonotone = 20;
   for (result.newton_steps = 0; result.newton_steps < max_steps; ++result.newton_steps) {
     if (residual <= tolerance) break;
     // The closed contacts' components, in order.
@@ -187,7 +188,13 @@ FrictionalSolve solve_frictional(const FrictionalProblem& p, double tolerance, i
       NaturalMap next = map;
       const double res = next.evaluate(trial);
       const double value = merit(next);
-      if (value <= (1.0 - 1e-4 * alpha) * current || res <= tolerance) {
+      // The whole step changes the sets (a contact closes or opens, one starts or stops
+      // slipping): taken, as a primal–dual active-set method would, within a budget of
+      // non-monotone steps; otherwise the search walks towards the kink and stalls there.
+      const bool set_change =
+          halving == 0 && next.state != map.state && value < 10.0 * current && nonmonotone > 0;
+      if (set_change) --nonmonotone;
+      if (value <= (1.0 - 1e-4 * alpha) * current || res <= tolerance || set_change) {
         r = trial;
         map = std::move(next);
         residual = res;

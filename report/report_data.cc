@@ -61,6 +61,15 @@ ReportData read_report_data(const std::vector<std::string>& folders) {
                              : name == "tolerance_study.json" ? data.tolerance_studies
                                                               : data.stability_studies;
       for (const nlohmann::json& entry : j) into.push_back(entry);
+    } else if (name == "compaction_study.json") {
+      const nlohmann::json j = read_json(file.string());
+      if (!j.is_array())
+        throw InputError(file.string(), "", "not a study written by fibrecheck study");
+      // Its pictures read the result files it kept, named relative to its folder.
+      for (nlohmann::json entry : j) {
+        entry["folder"] = file.parent_path().string();
+        data.compaction_studies.push_back(std::move(entry));
+      }
     } else {
       continue;
     }

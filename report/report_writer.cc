@@ -11,6 +11,8 @@
 #include "atomic_file.h"
 #include "csv_file.h"
 #include "gnuplot.h"
+#include "input_error.h"
+#include "load_path.h"
 #include "tables.h"
 
 namespace fibrecheck {
@@ -246,7 +248,8 @@ void comparisons(Report& report, const ReportData& data) {
 /// as circles of their radius at their deformed centres, the rim coloured by the bending moment
 /// there, and the contact forces of that slice as lines from each contact point (normal forces,
 /// scaled so that the largest is one radius long).
-void cross_section(Report& report, const StoredComparison& c, const Scene& scene) {
+void draw_cross_section(Report& report, const std::string& name, const std::string& what,
+                        const Scene& scene, const Result& result) {
   const Eigen::Vector3d axis = scene.contact.axis.normalized();
   int k = 0;
   axis.cwiseAbs().maxCoeff(&k);
@@ -254,62 +257,102 @@ void cross_section(Report& report, const StoredComparison& c, const Scene& scene
   g1 = (g1 - g1.dot(axis) * axis).normalized();
   const Eigen::Vector3d g2 = axis.cross(g1);
   const double cos_parallel = std::cos(scene.contact.parallel_angle_deg * M_PI / 180.0);
-  std::ostringstream circles, forces;
+  std::ostringstream circles, normal_forces, friction_forces;
   std::map<std::string, std::size_t> index;
-  for (std::size_t i = 0; i < c.user.fibres.size(); ++i) index[c.user.fibres[i].id] = i;
+  for (std::size_t i = 0; i < result.fibres.size(); ++i) index[result.fibres[i].id] = i;
   int drawn = 0;
-  double largest_force = 0.0, radius = INFINITY, largest_radius = 0.0;
+  double largest_force = 0.0, radius = INFINITY, largest_radius = 0.0, largest_friction = 0.0;
+  Eigen::Vector2d lo(INFINITY, INFINITY), hi(-INFINITY, -INFINITY);
   for (const FibreSpec& f : scene.fibres) {
     const Eigen::Vector3d t = (f.end - f.start).normalized();
     if (std::fabs(t.dot(axis)) < cos_parallel || !index.count(f.id)) continue;
-    const FibreResult& r = c.user.fibres[index[f.id]];
+    const FibreResult& r = result.fibres[index[f.id]];
     if (r.displacement.empty()) continue;
     const std::size_t j = (r.displacement.size() - 1) / 2;
     const double s = r.displacement.size() > 1 ? double(j) / (r.displacement.size() - 1) : 0.0;
     const Eigen::Vector3d x = f.start + s * (f.end - f.start) + r.displacement[j];
     const double M = j < r.moment.size() ? r.moment[j].norm() : 0.0;
     circles << x.dot(g1) << " " << x.dot(g2) << " " << f.radius << " " << M << "\n";
+    lo = lo.cwiseMin(Eigen::Vector2d(x.dot(g1) - f.radius, x.dot(g2) - f.radius));
+    hi = hi.cwiseMax(Eigen::Vector2d(x.dot(g1) + f.radius, x.dot(g2) + f.radius));
     radius = std::min(radius, f.radius);
     largest_radius = std::max(largest_radius, f.radius);
     ++drawn;
   }
   if (drawn < 3) return;
   // The contact points nearest the middle slice, one per pair.
-  std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> points;
-  for (const ContactResult& pair : c.user.contacts) {
+  std::vector<const ContactPoint*> points;
+  for (const ContactResult& pair : result.contacts) {
     if (pair.kind == "point" || pair.points.empty()) continue;
     const ContactPoint* nearest = &pair.points.front();
     for (const ContactPoint& p : pair.points)
       if (std::fabs(p.position - 0.5) < std::fabs(nearest->position - 0.5)) nearest = &p;
     if (std::fabs(nearest->position - 0.5) > 0.05) continue;
-    points.push_back({nearest->point, nearest->force});
+    points.push_back(nearest);
     largest_force = std::max(largest_force, nearest->force.norm());
+    largest_friction = std::max(largest_friction, nearest->friction_force.norm());
   }
-  for (const auto& [at, force] : points) {
-    const Eigen::Vector3d d = force / largest_force * radius;
-    // The force on fibres[0] and its reaction, each from the contact point.
-    for (double sign : {1.0, -1.0})
-      forces << at.dot(g1) << " " << at.dot(g2) << " " << sign * d.dot(g1) << " "
-             << sign * d.dot(g2) << "\n";
+  for (const ContactPoint* p : points) {
+    // The force on fibres[0] and its reaction, each from the contact point: the normal part, and
+    // the friction force in red on its own scale (it is at most mu times the normal force).
+    const Eigen::Vector3d n = p->normal_force / largest_force * radius;
+    const Eigen::Vector3d f = largest_friction > 0.0
+                                  ? Eigen::Vector3d(p->friction_force / largest_friction * radius)
+                                  : Eigen::Vector3d::Zero();
+    for (double sign : {1.0, -1.0}) {
+      normal_forces << p->point.dot(g1) << " " << p->point.dot(g2) << " " << sign * n.dot(g1) << " "
+                    << sign * n.dot(g2) << "\n";
+      if (f.norm() > 0.0)
+        friction_forces << p->point.dot(g1) << " " << p->point.dot(g2) << " " << sign * f.dot(g1)
+                        << " " << sign * f.dot(g2) << "\n";
+    }
   }
-  const std::string scene_name = c.summary["scene"];
+  std::ostringstream walls;
+  for (const WallSpec& w : scene.walls) {
+    // A wall seen edge-on in the section: a line through its point along its in-plane direction,
+    // clipped to the picture.
+    const Eigen::Vector2d n(w.normal.dot(g1), w.normal.dot(g2));
+    if (n.norm() < 1e-9) continue;
+    const Eigen::Vector2d p(w.point.dot(g1), w.point.dot(g2)), d(-n.y(), n.x());
+    const double far = 10.0 * (hi - lo).norm();
+    walls << (p - far * d).x() << " " << (p - far * d).y() << "\n"
+          << (p + far * d).x() << " " << (p + far * d).y() << "\n\n";
+  }
+  const Eigen::Vector2d pad = Eigen::Vector2d::Constant(0.3 * largest_radius);
+  lo -= pad;
+  hi += pad;
+  const std::string ranges = "set xrange [" + std::to_string(lo.x()) + ":" +
+                             std::to_string(hi.x()) + "]\nset yrange [" + std::to_string(lo.y()) +
+                             ":" + std::to_string(hi.y()) + "]\n";
   report.figure(
-      "cross_section_" + slug(scene_name),
-      "A cross-section of " + scene_name + " at mid-length after the iterative method (rule " +
-          c.user.rule +
-          "), drawn like the seed's Figure 4.14: the fibres at their deformed "
-          "centres, the rim coloured by the bending moment |M| there, and the contact forces of "
-          "that slice as lines (the largest, " +
-          sci(largest_force) + " N, one radius long).",
-      "set size ratio -1\nset offsets " + std::to_string(1.3 * largest_radius) + ", " +
-          std::to_string(1.3 * largest_radius) + ", " + std::to_string(1.3 * largest_radius) +
-          ", " + std::to_string(1.3 * largest_radius) +
-          "\nset xlabel 'cross-section axis 1 (mm)'\nset ylabel 'cross-section axis 2 (mm)'\nset "
+      name,
+      what +
+          ", drawn like the seed's Figure 4.14: the fibres at their deformed centres at "
+          "mid-length, the rim coloured by the bending moment |M| there, the walls in grey, and "
+          "the contact forces of that slice as lines from each contact point: normal parts in "
+          "orange (the largest, " +
+          sci(largest_force) +
+          " N, one radius long), friction forces in red on their own scale (the largest, " +
+          sci(largest_friction) + " N, one radius long).",
+      "set size ratio -1\n" + ranges +
+          "set xlabel 'cross-section axis 1 (mm)'\nset ylabel 'cross-section axis 2 (mm)'\nset "
           "cblabel '|M| (N mm)'\nset rmargin 14\nset palette defined (0 '#2040c0', "
-          "0.5 '#20b040', 1 '#e02020')\nset key off\nset grid\nset format cb '%.1e'\nplot @DATA0@ "
-          "using 1:2:3:4 with circles lc palette lw 3 fs empty, @DATA1@ using 1:2:3:4 with vectors "
-          "nohead lw 3 lc rgb '#e0a000'",
-      {{circles.str()}, {forces.str().empty() ? "nan nan nan nan\n" : forces.str()}});
+          "0.5 '#20b040', 1 '#e02020')\nset key off\nset grid\nset format cb '%.1e'\nset clip "
+          "two\nplot @DATA0@ using 1:2:3:4 with circles lc palette lw 3 fs empty, @DATA1@ using "
+          "1:2:3:4 with vectors nohead lw 3 lc rgb '#e0a000', @DATA2@ using 1:2:3:4 with vectors "
+          "nohead lw 3 lc rgb '#e00000', @DATA3@ using 1:2 with lines lw 2 lc rgb '#606060'",
+      {{circles.str()},
+       {normal_forces.str().empty() ? "nan nan nan nan\n" : normal_forces.str()},
+       {friction_forces.str().empty() ? "nan nan nan nan\n" : friction_forces.str()},
+       {walls.str().empty() ? "nan nan\n" : walls.str()}});
+}
+
+void cross_section(Report& report, const StoredComparison& c, const Scene& scene) {
+  const std::string scene_name = c.summary["scene"];
+  draw_cross_section(
+      report, "cross_section_" + slug(scene_name),
+      "A cross-section of " + scene_name + " after the iterative method (rule " + c.user.rule + ")",
+      scene, c.user);
 }
 
 void slice_studies(Report& report, const ReportData& data) {
@@ -565,6 +608,236 @@ void stability_studies(Report& report, const ReportData& data) {
              rows);
 }
 
+std::string fixed3(double x) {
+  if (!std::isfinite(x)) return "–";
+  std::ostringstream out;
+  out.setf(std::ios::fixed);
+  out.precision(3);
+  out << x;
+  return out.str();
+}
+
+double json_number(const json& j, const char* key) {
+  return j.contains(key) && j[key].is_number() ? j[key].get<double>() : NAN;
+}
+
+std::string run_title(const json& r) {
+  const std::string solver = r.value("solver", "") == "fem" ? "reference" : "iterative";
+  const std::string model = r.value("friction_model", "none");
+  std::ostringstream out;
+  out << solver << ", ";
+  if (model == "none")
+    out << "frictionless";
+  else
+    out << "mu " << json_number(r, "mu") << (model == "seed" ? " (seed rule)" : " (Coulomb)");
+  return out.str();
+}
+
+void compaction_studies(Report& report, const ReportData& data) {
+  if (data.compaction_studies.empty()) return;
+  report.section(
+      "Compaction",
+      "Each tow is compacted step by step along its load path (every position scaled by F about "
+      "the tow's centre, walls included), each step starting from the last. The pressure is the "
+      "mean over the walls of the wall force over the wall's area; Vf the fibres' cross-sections "
+      "over the area between the walls. Curves are fitted on the steps where the walls carry "
+      "force by van Wyk's p = kE(Vf^3 - Vf0^3) and Toll's p = kE(Vf^n - Vf0^n). Friction: "
+      "Coulomb's law per step (stick while |F| < muN, slip against the relative motion "
+      "otherwise), which both solvers solve as a Tresca fixed point (the radii muN updated "
+      "outside a convex inner problem; the reference solves each inner problem exactly by a "
+      "semismooth Newton method), and the seed's own rule (§4.3.4, Eqs. 4.29-4.33: the previous "
+      "resultant split along the deformed centres' normal, capped), run by the iterative "
+      "solver only.");
+  Table fits;
+  fits.label = "compaction_fits";
+  fits.caption =
+      "Compaction runs: how each load path ended, the last step's Vf and pressure, and the fits "
+      "on the steps with wall force (– where too few steps carry force: van Wyk needs two, Toll "
+      "three).";
+  fits.header = {"Scene",  "Run",   "Status", "Steps",  "Vf",       "p (MPa)", "vW k",
+                 "vW Vf0", "vW R2", "Toll k", "Toll n", "Toll Vf0", "Toll R2", "Time (s)"};
+  Table agreement;
+  agreement.label = "compaction_agreement";
+  agreement.caption =
+      "The iterative solver's compaction curve against the reference's with the same mu: the "
+      "largest per-step difference in pressure, relative to the reference curve's largest "
+      "pressure, and in strain energy, relative to its largest, over the steps both converged. "
+      "The seed's friction rule is measured against exact Coulomb friction.";
+  agreement.header = {
+      "Scene",          "mu",          "Iterative friction", "Reference friction", "Steps",
+      "Pressure error", "Energy error"};
+  for (const json& s : data.compaction_studies) {
+    const std::string scene = s.value("scene", "");
+    const double E = json_number(s, "youngs_modulus");
+    std::vector<Gnuplot::Series> curves, energies;
+    std::string plot_curves, plot_energy;
+    int style = 0;
+    const char* colours[] = {"#2040c0", "#e02020", "#20a040", "#e0a000", "#8040c0", "#404040"};
+    const json* fitted = nullptr;
+    for (const json& r : s["runs"]) {
+      const json& vw = r["van_wyk"];
+      const json& toll = r["toll"];
+      int steps = 0;
+      const json* last = nullptr;
+      std::ostringstream points, energy;
+      for (const json& p : r["points"]) {
+        if (p.value("status", "") != "converged") continue;
+        ++steps;
+        last = &p;
+        if (json_number(p, "pressure_MPa") > 0.0)
+          points << json_number(p, "fibre_volume_fraction") << " " << json_number(p, "pressure_MPa")
+                 << "\n";
+        energy << p.value("step", 0) << " " << json_number(p, "strain_energy") << " "
+               << json_number(p, "contacts_per_fibre") << "\n";
+      }
+      fits.rows.push_back({scene, run_title(r), r.value("status", ""),
+                           std::to_string(steps) + "/" + std::to_string(r["points"].size()),
+                           last ? fixed3(json_number(*last, "fibre_volume_fraction")) : "–",
+                           last ? sci(json_number(*last, "pressure_MPa")) : "–",
+                           sci(json_number(vw, "k")), fixed3(json_number(vw, "vf0")),
+                           fixed3(json_number(vw, "r2")), sci(json_number(toll, "k")),
+                           fixed3(json_number(toll, "n")), fixed3(json_number(toll, "vf0")),
+                           fixed3(json_number(toll, "r2")),
+                           seconds(json_number(r, "wall_time_s"))});
+      const std::string colour = colours[style % 6];
+      const int k = static_cast<int>(curves.size());
+      curves.push_back({points.str().empty() ? "nan nan\n" : points.str()});
+      plot_curves += std::string(plot_curves.empty() ? "" : ", ") + "@DATA" + std::to_string(k) +
+                     "@ using 1:2 with points pt " + std::to_string(5 + 2 * style) +
+                     " ps 1.6 lc rgb '" + colour + "' title '" + run_title(r) + "'";
+      const int e = static_cast<int>(energies.size());
+      energies.push_back({energy.str().empty() ? "nan nan nan\n" : energy.str()});
+      plot_energy += std::string(plot_energy.empty() ? "" : ", ") + "@DATA" + std::to_string(e) +
+                     "@ using 1:2 with linespoints pt " + std::to_string(5 + 2 * style) +
+                     " lw 2 lc rgb '" + colour + "' title '" + run_title(r) + "'";
+      ++style;
+      // The fitted curves drawn: the reference with friction if it has them, else any run.
+      const bool has_fit = json_number(vw, "k") == json_number(vw, "k");
+      if (has_fit &&
+          (!fitted || (r.value("solver", "") == "fem" && (*fitted).value("solver", "") != "fem")))
+        fitted = &r;
+    }
+    bool any_pressure = false;
+    for (const Gnuplot::Series& c : curves) any_pressure |= c.rows != "nan nan\n";
+    std::string fit_lines;
+    if (fitted) {
+      const json& vw = (*fitted)["van_wyk"];
+      const json& toll = (*fitted)["toll"];
+      auto law = [&](const json& f, double n) {
+        std::ostringstream out;
+        out.precision(10);
+        out << E * json_number(f, "k") << "*(x**" << n << " - " << json_number(f, "vf0") << "**"
+            << n << ")";
+        return out.str();
+      };
+      if (std::isfinite(json_number(vw, "vf0")))
+        fit_lines += ", (x >= " + std::to_string(json_number(vw, "vf0")) + " ? " + law(vw, 3.0) +
+                     " : 1/0) with lines lw 2 dt 2 lc rgb '#202020' title 'van Wyk fit (" +
+                     run_title(*fitted) + ")'";
+      if (std::isfinite(json_number(toll, "vf0")) && std::isfinite(json_number(toll, "n")))
+        fit_lines += ", (x >= " + std::to_string(json_number(toll, "vf0")) + " ? " +
+                     law(toll, json_number(toll, "n")) +
+                     " : 1/0) with lines lw 2 dt 3 lc rgb '#a02080' title 'Toll fit'";
+    }
+    if (any_pressure)
+      report.figure("compaction_" + slug(scene),
+                    "Compaction curve of " + scene +
+                        ": the mean wall pressure against the fibre volume fraction at every "
+                        "converged step that loads the walls, for each solver and friction "
+                        "setting, with the van Wyk and Toll fits" +
+                        (fitted ? " of the " + run_title(*fitted) + " run" : std::string()) + ".",
+                    "set xlabel 'fibre volume fraction V_f'\nset ylabel 'pressure (MPa)'\nset "
+                    "logscale y\nset format y '10^{%L}'\nset key bottom right\nset grid\nset "
+                    "samples 400\nset offsets graph 0.05, graph 0.05, 0, 0\nplot " +
+                        plot_curves + fit_lines,
+                    curves);
+    report.figure("compaction_energy_" + slug(scene),
+                  "Strain energy per step of " + scene +
+                      "'s load path for each run (steps that did not converge left out).",
+                  "set xlabel 'step'\nset ylabel 'strain energy (N mm)'\nset logscale y\nset "
+                  "format y '10^{%L}'\nset key top left\nset grid\nset offsets 0.2, 0.2, 0, "
+                  "0\nplot " +
+                      plot_energy,
+                  energies);
+    // Per-step pressure differences against the reference.
+    std::vector<Gnuplot::Series> errors;
+    std::string plot_errors;
+    auto run_of = [&](const std::string& solver, double mu, const std::string& model) {
+      for (const json& r : s["runs"])
+        if (r.value("solver", "") == solver && json_number(r, "mu") == mu &&
+            r.value("friction_model", "") == model)
+          return &r;
+      return static_cast<const json*>(nullptr);
+    };
+    for (const json& a : s["agreement"]) {
+      agreement.rows.push_back({scene, sci(json_number(a, "mu")), a.value("friction_model", ""),
+                                a.value("against", ""), std::to_string(a.value("steps", 0)),
+                                sci(json_number(a, "pressure_error")),
+                                sci(json_number(a, "energy_error"))});
+      const json* it = run_of("iterative", json_number(a, "mu"), a.value("friction_model", ""));
+      const json* ref = run_of("fem", json_number(a, "mu"), a.value("against", ""));
+      if (!it || !ref) continue;
+      double largest = 0.0;
+      for (const json& q : (*ref)["points"])
+        if (q.value("status", "") == "converged")
+          largest = std::max(largest, json_number(q, "pressure_MPa"));
+      std::ostringstream rows;
+      for (const json& q : (*ref)["points"])
+        for (const json& i : (*it)["points"])
+          if (i.value("step", 0) == q.value("step", 0) && largest > 0.0 &&
+              i.value("status", "") == "converged" && q.value("status", "") == "converged" &&
+              json_number(q, "pressure_MPa") > 0.0)
+            rows << json_number(q, "fibre_volume_fraction") << " "
+                 << std::max(1e-16, std::fabs(json_number(i, "pressure_MPa") -
+                                              json_number(q, "pressure_MPa")) /
+                                        largest)
+                 << "\n";
+      if (rows.str().empty()) continue;
+      const int k = static_cast<int>(errors.size());
+      errors.push_back({rows.str()});
+      plot_errors += std::string(plot_errors.empty() ? "" : ", ") + "@DATA" + std::to_string(k) +
+                     "@ using 1:2 with linespoints pt " + std::to_string(5 + 2 * k) +
+                     " ps 1.5 lw 2 title '" + run_title(*it) + "'";
+    }
+    if (!plot_errors.empty())
+      report.figure("compaction_error_" + slug(scene),
+                    "The iterative compaction curve of " + scene +
+                        " against the reference's with the same mu: the pressure difference at "
+                        "each step, relative to the reference curve's largest pressure.",
+                    "set xlabel 'fibre volume fraction V_f'\nset ylabel '|p_{it} - p_{ref}| / "
+                    "max p_{ref}'\nset logscale y\nset format y '10^{%L}'\nset key top "
+                    "left\nset grid\nset offsets graph 0.05, graph 0.05, 0, 0\nplot " +
+                        plot_errors,
+                    errors);
+    // The last state of the run with friction (Coulomb, iterative), drawn like Figure 4.14.
+    const std::filesystem::path folder = s.value("folder", "");
+    try {
+      const Scene stepped = read_scene((folder / s.value("scene_file", "")).string());
+      for (const json& r : s["runs"]) {
+        if (r.value("solver", "") != "iterative" || r.value("friction_model", "") == "seed")
+          continue;
+        if (r.value("friction_model", "") == "none" &&
+            run_of("iterative", stepped.contact.friction, "coulomb"))
+          continue;  // with friction in the scene, the frictional run is the one drawn
+        for (const json& section : r["sections"]) {
+          const int step = section.value("step", 0);
+          Scene at = scene_at_step(stepped, stepped.steps.at(static_cast<std::size_t>(step - 1)));
+          const Result result = read_result((folder / section.value("result", "")).string());
+          draw_cross_section(report,
+                             "compaction_section_" + slug(scene) + "_step" + std::to_string(step),
+                             "A cross-section of " + scene + " at step " + std::to_string(step) +
+                                 " of its load path (" + run_title(r) + ")",
+                             at, result);
+        }
+      }
+    } catch (const InputError& e) {
+      report.summary().missing.push_back("cross-sections of " + scene + ": " + e.what());
+    }
+  }
+  if (!fits.rows.empty()) report.table(fits);
+  if (!agreement.rows.empty()) report.table(agreement);
+}
+
 }  // namespace
 
 ReportSummary write_report(const ReportData& data, const std::string& folder) {
@@ -573,6 +846,7 @@ ReportSummary write_report(const ReportData& data, const std::string& folder) {
   slice_studies(report, data);
   tolerance_studies(report, data);
   stability_studies(report, data);
+  compaction_studies(report, data);
   return report.finish(data.sources);
 }
 

@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <iostream>
 
+#include "compaction_study.h"
 #include "exit_codes.h"
 #include "input_error.h"
 #include "scene.h"
@@ -63,6 +64,32 @@ int run_study(const StudyArguments& args) {
               "%.4g s: speed-up %.3g\n",
               s.scene.c_str(), u.error_level, u.iterative_method.c_str(), u.iterative_time_s,
               u.reference_time_s, u.speedup());
+  } else if (args.study == "compaction") {
+    CompactionStudyOptions o;
+    o.steps = args.steps;
+    o.final_compaction = args.final_compaction;
+    o.sections = args.sections;
+    o.quiet = args.quiet;
+    const auto result = run_compaction_study(scenes, o, solvers, args.out);
+    if (!args.quiet)
+      for (const CompactionStudyScene& s : result) {
+        std::printf("%s:\n", s.scene.c_str());
+        for (const CompactionRun& r : s.runs) {
+          const CompactionPoint* last = r.points.empty() ? nullptr : &r.points.back();
+          std::printf(
+              "  %-9s mu %-4g %-8s %-14s %zu steps, last Vf %.3f p %.4g MPa; van Wyk k %.3g "
+              "Vf0 %.3f R2 %.3f; Toll k %.3g n %.2f Vf0 %.3f R2 %.3f\n",
+              r.solver.c_str(), r.mu, r.friction_model.c_str(), r.status.c_str(), r.points.size(),
+              last ? last->fibre_volume_fraction : NAN, last ? last->pressure : NAN, r.van_wyk.k,
+              r.van_wyk.vf0, r.van_wyk.r2, r.toll.k, r.toll.n, r.toll.vf0, r.toll.r2);
+        }
+        for (const CompactionAgreement& a : s.agreement)
+          std::printf(
+              "  iterative (mu %g, %s) against the reference (%s): pressure %.2e, energy "
+              "%.2e over %d steps\n",
+              a.mu, a.friction_model.c_str(), a.against.c_str(), a.pressure_error, a.energy_error,
+              a.steps);
+      }
   } else {
     StabilityStudyOptions o;
     if (!args.fractions.empty()) o.fractions = args.fractions;
@@ -127,6 +154,25 @@ CLI::App* add_study_command(CLI::App& app, StudyArguments& args) {
   stability
       ->add_option("--stiffness-ratios", args.ratios,
                    "Young's modulus of every second fibre times these")
+      ->delimiter(',');
+  CLI::App* compaction = study->add_subcommand(
+      "compaction",
+      "Pressure against fibre volume fraction along each scene's load path, both solvers, with "
+      "and without friction; van Wyk and Toll fits");
+  common(compaction);
+  compaction
+      ->add_option("--steps", args.steps,
+                   "For scenes without steps: this many compaction steps (0: such scenes are "
+                   "refused)")
+      ->check(CLI::NonNegativeNumber);
+  compaction
+      ->add_option("--final-compaction", args.final_compaction,
+                   "The last step's compaction factor F for --steps")
+      ->check(CLI::Range(1e-6, 1.0))
+      ->capture_default_str();
+  compaction
+      ->add_option("--sections", args.sections,
+                   "Steps whose state is kept for cross-section pictures (the last always is)")
       ->delimiter(',');
   return study;
 }
