@@ -42,8 +42,9 @@ if [ "$mode" = test ]; then
 fi
 
 # The main job: every scene through the iterative solver (a summary table), then the default suite
-# of the harness — compare on every committed scene, the slice study, the tolerance study and the
-# stability study — and the report. Studies keep their points: an interrupted run resumes.
+# of the harness — compare on every committed scene, the slice study, the tolerance study, the
+# stability study and the compaction study — and the report. Studies keep their points: an
+# interrupted run resumes.
 out=build/main
 mkdir -p "$out" build/results
 step() { echo; echo "== $*"; }
@@ -78,6 +79,14 @@ step "tolerance study: a generated 100-fibre tow against the reference on its sl
 step "stability study: two crossing fibres, the parallel fibres and the extreme catalogue"
 ./build/fibrecheck study stability scenes/two_fibres_crossing.json scenes/parallel_fibres.json \
   scenes/extreme/*.json --max-iterations 50000 --out "$out/study/stability" -q
+step "compaction study: the seed's compaction test case, generated tows of 19 and 100 fibres (mu = 0.2)"
+./build/fibrecheck generate tow --fibres 19 --seed 2 --volume-fraction 0.35 --steps 12 \
+  --final-compaction 0.7 --friction 0.2 --out "$out/scenes/tow_19_compaction.json" >/dev/null
+./build/fibrecheck generate tow --fibres 100 --slices 20 --seed 2 --volume-fraction 0.35 --steps 12 \
+  --final-compaction 0.7 --friction 0.2 --out "$out/scenes/tow_100_compaction.json" >/dev/null
+./build/fibrecheck study compaction scenes/compaction_test.json "$out/scenes/tow_19_compaction.json" \
+  "$out/scenes/tow_100_compaction.json" --steps 6 --final-compaction 0.7 --sections 10 \
+  --out "$out/study/compaction"
 step "report"
 ./build/fibrecheck report "$out/compare" "$out/study" --out "$out/report"
 echo

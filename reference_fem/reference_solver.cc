@@ -21,6 +21,7 @@
 
 #include "ambiguous_sides.h"
 #include "beam_model.h"
+#include "bounded_active_set.h"
 #include "carry_over.h"
 #include "contact_detection.h"
 #include "contact_results.h"
@@ -272,7 +273,7 @@ class ReferenceSolver {
   Eigen::VectorXd reaction_;  ///< its last answer (warm start of the next outer iteration)
   long newton_steps_ = 0;
   long tresca_updates_ = 0;
-  static constexpr int kMaxTrescaUpdates = 100;
+  static constexpr int kMaxTrescaUpdates = 500;
 };
 
 ReferenceSolver::ReferenceSolver(const Scene& scene, const ReferenceOptions& options)
@@ -683,42 +684,85 @@ void ReferenceSolver::solve_friction(const std::vector<char>& excluded) {
   problem.bounds.resize(n);
   for (Eigen::Index k = 0; k < n; ++k)
     problem.bounds[k] = mu_ * std::max(r[problem.offset[k]], 0.0);
-  // The radii settle to the round-off of the normal forces (W's condition times machine epsilon):
-  // far below the slips the loads cause.
+  // The radii settle to the round-off of the normal forces (W's condition times machine epsilon),
+  // far below the slips the loads cause, or to 1e-3 of the scene's tolerance t_d (the fixed point
+  // converges linearly, slowly where it must be relaxed): a thousand times tighter than the
+  // iterative solver's stopping criterion.
   double slip_scale = 0.0;
   for (Eigen::Index k = 0; k < n; ++k)
     for (Eigen::Index i = problem.offset[k] + 1; i < problem.offset[k + 1]; ++i)
       slip_scale = std::max(slip_scale, std::fabs(problem.q[i]));
-  const double settled = std::max(threshold_, 1e-9 * slip_scale);
+  const double settled = std::max({threshold_, 1e-9 * slip_scale, 1e-3 * tolerance_});
+  bool one_tangent = true;
+  for (const Contact& c : contacts_) one_tangent &= c.tangents <= 1;
   FrictionalSolve solved;
-  double change = INFINITY;
+  double change = INFINITY, last_change = INFINITY, relaxation = 1.0;
+  int falling = 0;
   int updates = 0;
   for (updates = 1; updates <= kMaxTrescaUpdates; ++updates) {
-    solved = solve_frictional(problem, threshold_, 100, r);
-    newton_steps_ += solved.newton_steps;
+    if (one_tangent) {
+      // Slices and walls only: the Tresca problem is a box-constrained QP, solved exactly by the
+      // bounded active set (a Newton method stalled on compacted tows, see frictional_contact.h).
+      Eigen::VectorXd lo = Eigen::VectorXd::Zero(r.size());
+      Eigen::VectorXd hi = Eigen::VectorXd::Constant(r.size(), INFINITY);
+      for (Eigen::Index k = 0; k < n; ++k) {
+        const Eigen::Index o = problem.offset[k];
+        if (excluded[k]) hi[o] = 0.0;
+        for (Eigen::Index i = o + 1; i < problem.offset[k + 1]; ++i) {
+          const bool movable = problem.W.coeff(i, i) > 1e-12 * problem.W.coeff(o, o);
+          lo[i] = movable && !excluded[k] ? -problem.bounds[k] : 0.0;
+          hi[i] = movable && !excluded[k] ? problem.bounds[k] : 0.0;
+        }
+      }
+      const BoundedSolve box = bounded_active_set(problem.W, problem.q, lo, hi, threshold_,
+                                                  options_.max_active_set_iterations, r);
+      active_set_iterations_ += box.passes;
+      solved.settled = box.solved;
+      solved.newton_steps = 0;
+      solved.residual = box.solved ? 0.0 : INFINITY;
+    } else {
+      solved = solve_frictional(problem, threshold_, 100, r);
+      newton_steps_ += solved.newton_steps;
+    }
     if (!solved.settled) break;
+    // Coulomb's law for this answer: a slipping contact's radius must be μP, a sticking one's
+    // friction within μP — each violation times the contact's tangential compliance, the slip it
+    // stands for. (A sticking contact's radius may differ from μP without harm.)
     change = 0.0;
     for (Eigen::Index k = 0; k < n; ++k) {
       const Eigen::Index o = problem.offset[k];
       const double g = mu_ * std::max(r[o], 0.0);
-      // A contact that slipped on its old circle slips on the new one.
       const Eigen::Index t = problem.offset[k + 1] - o - 1;
       const double size = r.segment(o + 1, t).norm();
-      if (problem.bounds[k] > 0.0 && size >= (1.0 - 1e-9) * problem.bounds[k])
-        r.segment(o + 1, t) *= g / size;
       double compliance = 0.0;
       for (Eigen::Index i = o + 1; i < problem.offset[k + 1]; ++i)
         compliance = std::max(compliance, problem.W.coeff(i, i));
-      change = std::max(change, std::fabs(g - problem.bounds[k]) * compliance);
-      problem.bounds[k] = g;
+      const bool slipping = problem.bounds[k] > 0.0 && size >= (1.0 - 1e-9) * problem.bounds[k];
+      change =
+          std::max(change, (slipping ? std::fabs(g - problem.bounds[k]) : std::max(0.0, size - g)) *
+                               compliance);
+      // A contact that slipped on its old circle slips on the new one.
+      if (slipping) r.segment(o + 1, t) *= g / size;
+      // Relaxed when the violation stops falling: the plain map g ← μP settles into cycles on
+      // compacted tows (a radius whose own normal force falls faster than it grows).
+      problem.bounds[k] += relaxation * (g - problem.bounds[k]);
     }
+    // Halved when the violation grows, grown again while it falls steadily.
+    if (change > last_change)
+      relaxation = std::max(relaxation * 0.5, 1.0 / 64.0), falling = 0;
+    else if (++falling >= 3)
+      relaxation = std::min(relaxation * 1.5, 1.0), falling = 0;
+    last_change = change;
     if (change <= settled) break;
   }
   tresca_updates_ += std::min(updates, kMaxTrescaUpdates);
   if (!solved.settled || change > settled) {
     std::ostringstream out;
     out.precision(3);
-    if (!solved.settled)
+    if (!solved.settled && one_tangent)
+      out << "the frictional contact problem's Tresca problem was not solved in "
+          << options_.max_active_set_iterations << " active-set passes";
+    else if (!solved.settled)
       out << "the frictional contact problem did not settle: after " << solved.newton_steps
           << " Newton steps on its Tresca problem Coulomb's law is still violated by "
           << solved.residual << " mm";

@@ -12,8 +12,8 @@
 // where the walls carry force.
 //
 // Sample run:
-//   fibrecheck generate tow --fibres 19 --seed 2 --volume-fraction 0.35 --steps 6 \
-//     --final-compaction 0.7 --friction 0.2 --out tow19.json
+//   fibrecheck generate tow --fibres 19 --seed 2 --volume-fraction 0.35 --steps 6
+//     (continued:) --final-compaction 0.7 --friction 0.2 --out tow19.json
 //   fibrecheck study compaction tow19.json --out study
 
 #include <cmath>

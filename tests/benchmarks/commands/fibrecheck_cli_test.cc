@@ -261,6 +261,27 @@ TEST_F(Cli, FemRejectsBadInputWithoutWritingAnything) {
   }
 }
 
+// The compaction study refuses what it cannot measure before it writes anything: a scene without
+// walls (no pressure), one without a load path unless --steps gives one, a compaction beyond (0,
+// 1].
+TEST_F(Cli, CompactionStudyRefusesScenesItCannotCompact) {
+  const std::string out = " --out " + dir_ + "study";
+  struct Case {
+    std::string arguments, says;
+  };
+  for (const Case& k :
+       {Case{"study compaction " + scene("two_fibres_crossing") + " --steps 3" + out, "walls"},
+        Case{"study compaction " + scene("compaction_test") + out, "steps"},
+        Case{"study compaction " + scene("compaction_test") + " --steps 3 --final-compaction 2" +
+                 out,
+             "--final-compaction"}}) {
+    const Outcome bad = run(k.arguments);
+    EXPECT_EQ(bad.code, 2) << k.arguments;
+    EXPECT_NE(bad.err.find(k.says), std::string::npos) << k.arguments << "\n" << bad.err;
+    EXPECT_FALSE(fs::exists(dir_ + "study")) << k.arguments;
+  }
+}
+
 // Continuous line contact with a refinement, and the beams for ParaView through DataOut.
 TEST_F(Cli, FemContinuousLineContactAndParaViewBeams) {
   const Outcome ok = run("fem " + scene("parallel_fibres") +
