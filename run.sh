@@ -82,8 +82,9 @@ step "stability study: two crossing fibres, the parallel fibres and the extreme 
 step "compaction study: the seed's compaction test case, generated tows of 19 and 100 fibres (mu = 0.2)"
 ./build/fibrecheck generate tow --fibres 19 --seed 2 --volume-fraction 0.35 --steps 12 \
   --final-compaction 0.7 --friction 0.2 --out "$out/scenes/tow_19_compaction.json" >/dev/null
-./build/fibrecheck generate tow --fibres 100 --slices 20 --seed 2 --volume-fraction 0.35 --steps 12 \
-  --final-compaction 0.7 --friction 0.2 --out "$out/scenes/tow_100_compaction.json" >/dev/null
+./build/fibrecheck generate tow --fibres 100 --slices 20 --seed 2 --volume-fraction 0.35 --steps 5 \
+  --first-compaction 0.8 --final-compaction 0.7 --friction 0.2 \
+  --out "$out/scenes/tow_100_compaction.json" >/dev/null
 ./build/fibrecheck study compaction scenes/compaction_test.json "$out/scenes/tow_19_compaction.json" \
   "$out/scenes/tow_100_compaction.json" --steps 6 --final-compaction 0.7 --sections 10 \
   --out "$out/study/compaction"

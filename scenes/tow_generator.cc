@@ -49,6 +49,9 @@ Scene generate_tow(const TowOptions& o) {
     throw InputError(source, "steps", "must be a whole number from 0 to 1000");
   if (!(o.compaction > 0.0 && o.compaction <= 1.0))
     throw InputError(source, "compaction", "must lie in (0, 1]");
+  if (o.first_compaction != 0.0 &&
+      !(o.first_compaction >= o.compaction && o.first_compaction <= 1.0))
+    throw InputError(source, "first-compaction", "must lie in [F, 1] (F the final compaction)");
   if (!(o.friction >= 0.0 && std::isfinite(o.friction)))
     throw InputError(source, "friction", "must be a finite number, not negative");
 
@@ -159,8 +162,13 @@ Scene generate_tow(const TowOptions& o) {
   scene.source = scene.name;
   // With a load path the scene is written before compaction and its steps compact it.
   const double written = o.steps > 0 ? 1.0 : o.compaction;
-  for (int k = 1; k <= o.steps; ++k)
-    scene.steps.push_back({1.0 - (1.0 - o.compaction) * k / o.steps, 1.0});
+  if (o.first_compaction > 0.0 && o.steps > 1)
+    for (int k = 0; k < o.steps; ++k)
+      scene.steps.push_back(
+          {o.first_compaction + (o.compaction - o.first_compaction) * k / (o.steps - 1), 1.0});
+  else
+    for (int k = 1; k <= o.steps; ++k)
+      scene.steps.push_back({1.0 - (1.0 - o.compaction) * k / o.steps, 1.0});
   scene.contact.friction = o.friction;
   for (std::size_t i = 0; i < placed.size(); ++i) {
     const Eigen::Vector2d y0 = centre + written * (placed[i].y0 - centre);

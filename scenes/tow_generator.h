@@ -27,8 +27,12 @@ struct TowOptions {
   double compaction = 0.9;        ///< factor F on the cross-section, (0, 1]
   double clearance = 0.02;        ///< extra gap when placing, fraction of 2r
   /// 0: the tow as compacted. K > 0: the tow before compaction (walls at the uncompacted
-  /// section) with a load path of K steps F_k = 1 − (1 − F)·k/K, k = 1…K, the last the compaction.
+  /// section) with a load path of K steps F_k = 1 − (1 − F)·k/K, k = 1…K, the last the compaction
+  /// (or from `first_compaction` to F).
   int steps = 0;
+  /// The first step's factor (0: 1 − (1 − F)/K, evenly spaced from the uncompacted tow); the
+  /// steps run evenly from it to F.
+  double first_compaction = 0.0;
   double friction = 0.0;  ///< Coulomb coefficient μ of the scene's contacts
 };
 

@@ -63,6 +63,9 @@ CLI::App* add_generate_command(CLI::App& app, GenerateArguments& args) {
                   "Write the tow uncompacted with a load path of K compaction steps down to F "
                   "(0: the tow as compacted)")
       ->capture_default_str();
+  tow->add_option("--first-compaction", o.first_compaction,
+                  "With --steps: the first step's factor (the steps run evenly from it to F; "
+                  "default: evenly from the uncompacted tow)");
   tow->add_option("--friction", o.friction, "Coulomb coefficient mu of the contacts")
       ->capture_default_str();
   tow->add_option("--out", args.out, "Scene file to write")->required();

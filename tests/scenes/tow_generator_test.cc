@@ -89,6 +89,27 @@ namespace {
 
 // With a load path the tow is written before compaction; its last step is the compacted tow the
 // generator writes without one, support for support and wall for wall.
+// A load path that starts where the walls begin to carry force: evenly from the first factor to
+// the last, the friction coefficient written into the scene, bad ranges refused.
+TEST(TowGenerator, StepsFromAFirstCompactionAndFriction) {
+  TowOptions o;
+  o.fibres = 7;
+  o.volume_fraction = 0.35;
+  o.compaction = 0.7;
+  o.steps = 5;
+  o.first_compaction = 0.8;
+  o.friction = 0.2;
+  const Scene path = generate_tow(o);
+  ASSERT_EQ(path.steps.size(), 5u);
+  for (int k = 0; k < 5; ++k) EXPECT_NEAR(path.steps[k].compaction, 0.8 - 0.025 * k, 1e-15);
+  EXPECT_EQ(path.contact.friction, 0.2);
+  o.first_compaction = 0.6;
+  EXPECT_THROW(generate_tow(o), InputError);
+  o.first_compaction = 0.8;
+  o.friction = -1;
+  EXPECT_THROW(generate_tow(o), InputError);
+}
+
 TEST(TowGenerator, StepsCompactTheTowTheGeneratorCompacts) {
   TowOptions o;
   o.fibres = 19;
