@@ -296,9 +296,10 @@ std::vector<CompactionStudyScene> run_compaction_study(const std::vector<Scene>&
       const std::string file = run.label() + ".step" + std::to_string(last) + ".result.json";
       write_result((dir / file).string(), result);
       run.sections.emplace_back(last, slug(scene.name) + "/" + file);
-      // Earlier states for the pictures: the path up to that step, again.
+      // Earlier states for the pictures (the iterative solver's, which the report draws): the
+      // path up to that step, again.
       for (int k : options.sections) {
-        if (k < 1 || k >= last) continue;
+        if (k < 1 || k >= last || plan.solver != "iterative") continue;
         Scene partial = s;
         partial.steps.resize(static_cast<std::size_t>(k));
         const std::string name = run.label() + ".step" + std::to_string(k) + ".result.json";

@@ -31,7 +31,8 @@ struct CompactionStudyOptions {
   /// bad input).
   int steps = 0;
   double final_compaction = 0.7;
-  /// Steps (1-based) whose state is kept for the cross-section pictures, besides the last.
+  /// Steps (1-based) whose state the iterative runs keep for the cross-section pictures, besides
+  /// the last (every run keeps its last).
   std::vector<int> sections;
   bool quiet = false;
 };
