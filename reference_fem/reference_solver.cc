@@ -737,12 +737,13 @@ void ReferenceSolver::solve_friction(const std::vector<char>& excluded) {
       double compliance = 0.0;
       for (Eigen::Index i = o + 1; i < problem.offset[k + 1]; ++i)
         compliance = std::max(compliance, problem.W.coeff(i, i));
-      const bool slipping = problem.bounds[k] > 0.0 && size >= (1.0 - 1e-9) * problem.bounds[k];
+      // A zero radius lets the contact slip freely: its radius must become μP too.
+      const bool slipping = !(problem.bounds[k] > 0.0) || size >= (1.0 - 1e-9) * problem.bounds[k];
       change =
           std::max(change, (slipping ? std::fabs(g - problem.bounds[k]) : std::max(0.0, size - g)) *
                                compliance);
       // A contact that slipped on its old circle slips on the new one.
-      if (slipping) r.segment(o + 1, t) *= g / size;
+      if (slipping && size > 0.0) r.segment(o + 1, t) *= g / size;
       // Relaxed when the violation stops falling: the plain map g ← μP settles into cycles on
       // compacted tows (a radius whose own normal force falls faster than it grows).
       problem.bounds[k] += relaxation * (g - problem.bounds[k]);
