@@ -695,6 +695,16 @@ void ReferenceSolver::solve_friction(const std::vector<char>& excluded) {
   const double settled = std::max({threshold_, 1e-9 * slip_scale, 1e-3 * tolerance_});
   bool one_tangent = true;
   for (const Contact& c : contacts_) one_tangent &= c.tangents <= 1;
+  // Each contact's tangential compliance (the slip per unit of friction), and for one tangent
+  // whether anything moves along it: fixed for the whole fixed point.
+  std::vector<double> tangential_compliance(n, 0.0);
+  std::vector<char> movable(n, 0);
+  for (Eigen::Index k = 0; k < n; ++k) {
+    const Eigen::Index o = problem.offset[k];
+    for (Eigen::Index i = o + 1; i < problem.offset[k + 1]; ++i)
+      tangential_compliance[k] = std::max(tangential_compliance[k], problem.W.coeff(i, i));
+    movable[k] = !excluded[k] && tangential_compliance[k] > 1e-12 * problem.W.coeff(o, o);
+  }
   FrictionalSolve solved;
   double change = INFINITY, last_change = INFINITY, relaxation = 1.0;
   int falling = 0;
@@ -709,9 +719,8 @@ void ReferenceSolver::solve_friction(const std::vector<char>& excluded) {
         const Eigen::Index o = problem.offset[k];
         if (excluded[k]) hi[o] = 0.0;
         for (Eigen::Index i = o + 1; i < problem.offset[k + 1]; ++i) {
-          const bool movable = problem.W.coeff(i, i) > 1e-12 * problem.W.coeff(o, o);
-          lo[i] = movable && !excluded[k] ? -problem.bounds[k] : 0.0;
-          hi[i] = movable && !excluded[k] ? problem.bounds[k] : 0.0;
+          lo[i] = movable[k] ? -problem.bounds[k] : 0.0;
+          hi[i] = movable[k] ? problem.bounds[k] : 0.0;
         }
       }
       const BoundedSolve box = bounded_active_set(problem.W, problem.q, lo, hi, threshold_,
@@ -734,9 +743,7 @@ void ReferenceSolver::solve_friction(const std::vector<char>& excluded) {
       const double g = mu_ * std::max(r[o], 0.0);
       const Eigen::Index t = problem.offset[k + 1] - o - 1;
       const double size = r.segment(o + 1, t).norm();
-      double compliance = 0.0;
-      for (Eigen::Index i = o + 1; i < problem.offset[k + 1]; ++i)
-        compliance = std::max(compliance, problem.W.coeff(i, i));
+      const double compliance = tangential_compliance[k];
       // A zero radius lets the contact slip freely: its radius must become μP too.
       const bool slipping = !(problem.bounds[k] > 0.0) || size >= (1.0 - 1e-9) * problem.bounds[k];
       change =

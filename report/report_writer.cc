@@ -39,10 +39,8 @@ std::string csv_cell(double x) {
 }
 
 /// A scene name for file names.
-std::string slug(std::string name) {
-  for (char& c : name)
-    if (!std::isalnum(static_cast<unsigned char>(c)) && c != '_' && c != '-') c = '_';
-  return name;
+std::string slug(const std::string& name) {
+  return file_name_slug(name);
 }
 
 struct FigureEntry {

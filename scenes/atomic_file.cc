@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <cctype>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -48,6 +49,12 @@ void write_file_atomically(const std::string& path, const std::string& contents)
     if (out) out.flush();
     if (!out) throw InputError(path, "", "cannot write it");
   });
+}
+
+std::string file_name_slug(std::string name) {
+  for (char& c : name)
+    if (!std::isalnum(static_cast<unsigned char>(c)) && c != '_' && c != '-') c = '_';
+  return name;
 }
 
 }  // namespace fibrecheck

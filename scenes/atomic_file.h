@@ -20,4 +20,7 @@ void write_file_atomically(const std::string& path, const std::string& contents)
 /// InputError naming `path` when it cannot be made.
 void create_parent_folder(const std::string& path);
 
+/// `name` fit for a file name: every character but letters, digits, '_' and '-' becomes '_'.
+std::string file_name_slug(std::string name);
+
 }  // namespace fibrecheck

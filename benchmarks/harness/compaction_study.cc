@@ -17,10 +17,8 @@ namespace {
 
 using nlohmann::json;
 
-std::string slug(std::string name) {
-  for (char& c : name)
-    if (!std::isalnum(static_cast<unsigned char>(c)) && c != '_' && c != '-') c = '_';
-  return name;
+std::string slug(const std::string& name) {
+  return file_name_slug(name);
 }
 
 json number_or_null(double x) {
