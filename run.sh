@@ -13,7 +13,8 @@ esac
 
 # Debian packages the project builds and runs with.
 packages=(build-essential cmake libeigen3-dev nlohmann-json3-dev libcli11-dev libgtest-dev
-          libbenchmark-dev gnuplot-nox libdeal.ii-dev gmsh libgmsh-dev openmpi-bin)
+          libbenchmark-dev gnuplot-nox libdeal.ii-dev gmsh libgmsh-dev openmpi-bin
+          libsiconos-numerics-dev)
 
 missing=()
 for p in "${packages[@]}"; do

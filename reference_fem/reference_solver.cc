@@ -17,10 +17,12 @@
 #include <map>
 #include <set>
 #include <sstream>
+#include <thread>
 #include <tuple>
 
 #include "ambiguous_sides.h"
 #include "beam_model.h"
+#include "blas_threads.h"
 #include "bounded_active_set.h"
 #include "carry_over.h"
 #include "contact_detection.h"
@@ -213,6 +215,8 @@ class ReferenceSolver {
   void assemble_system();
   void solve();
   void solve_friction(const std::vector<char>& excluded);
+  /// The problem just solved, with its answer, for options_.contact_problem.
+  void keep_contact_problem(const std::vector<char>& excluded);
   bool update_active_set();
   void output_results(Result& r);
 
@@ -271,6 +275,7 @@ class ReferenceSolver {
   /// The frictional problem of the candidates (μ > 0): W with the tangential blocks and q.
   FrictionalProblem friction_problem_;
   Eigen::VectorXd reaction_;  ///< its last answer (warm start of the next outer iteration)
+  ContactProblem exported_;   ///< the problem last solved (only with options_.contact_problem)
   long newton_steps_ = 0;
   long tresca_updates_ = 0;
   static constexpr int kMaxTrescaUpdates = 500;
@@ -660,6 +665,35 @@ void ReferenceSolver::solve() {
                std::to_string(options_.max_active_set_iterations) + " passes";
   for (Eigen::Index k = 0; k < n; ++k) contacts_[k].force = solved ? P_[k] : 0.0;
   if (solved && !singular && mu_ > 0.0) solve_friction(excluded);
+  if (options_.contact_problem) keep_contact_problem(excluded);
+}
+
+void ReferenceSolver::keep_contact_problem(const std::vector<char>& excluded) {
+  ContactProblem& p = exported_;
+  p.scene = scene_.name;
+  p.mu = mu_;
+  p.contacts.clear();
+  for (std::size_t k = 0; k < contacts_.size(); ++k) {
+    const Contact& c = contacts_[k];
+    ProblemContact pc;
+    pc.kind = to_string(c.kind);
+    pc.fibres.push_back(fibres_[c.a].id);
+    if (c.kind != ContactKind::wall) pc.fibres.push_back(fibres_[c.b].id);
+    pc.tangents = mu_ > 0.0 ? c.tangents : 0;
+    pc.excluded = excluded[k] != 0;
+    p.contacts.push_back(std::move(pc));
+  }
+  set_offsets(p);
+  p.W = mu_ > 0.0 ? friction_problem_.W : W_;
+  p.q = mu_ > 0.0 ? friction_problem_.q : d0_;
+  p.reaction = Eigen::VectorXd::Zero(p.offset.back());
+  for (std::size_t k = 0; k < contacts_.size(); ++k) {
+    const Contact& c = contacts_[k];
+    const Eigen::Index o = p.offset[k];
+    p.reaction[o] = c.force;
+    if (p.contacts[k].tangents >= 1) p.reaction[o + 1] = c.tangent.dot(c.friction);
+    if (p.contacts[k].tangents == 2) p.reaction[o + 2] = c.normal.cross(c.tangent).dot(c.friction);
+  }
 }
 
 // solve_friction: Coulomb's law at every candidate, exactly (semismooth Newton on its natural
@@ -980,6 +1014,11 @@ Result ReferenceSolver::run() {
     setup_system();
   }
   output_results(r);
+  if (options_.contact_problem) {
+    if (exported_.offset.empty()) set_offsets(exported_);
+    exported_.status = to_string(r.status);
+    options_.contact_problem(exported_);
+  }
   r.warnings.insert(r.warnings.begin(), ambiguous.begin(), ambiguous.end());
   assess_validity(r, fibres_);
   r.iterations = std::min(outer, options_.max_outer_iterations);
@@ -1074,6 +1113,7 @@ Result solve_refined_until_settled(const Scene& scene, const ReferenceOptions& o
 }  // namespace
 
 Result solve_reference(const Scene& scene, const ReferenceOptions& options) {
+  share_cores_with_blas(options.communicator);
   // A load path step by step; without friction each step's answer is that of its own geometry
   // and loads, so each is solved afresh, exactly.
   // With friction each step starts where the last one ended (its slip is measured from there).
@@ -1090,6 +1130,18 @@ Result solve_reference(const Scene& scene, const ReferenceOptions& options) {
   });
   replace_non_finite(r);
   return r;
+}
+
+void share_cores_with_blas(MPI_Comm communicator) {
+  MPI_Comm node;
+  MPI_Comm_split_type(communicator, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &node);
+  int here = 1;
+  MPI_Comm_size(node, &here);
+  MPI_Comm_free(&node);
+  if (here <= 1) return;
+  const int cores = std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+  const int share = std::max(1, cores / here);
+  if (blas_threads() > share) set_blas_threads(share);
 }
 
 namespace {

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "beam_model.h"
+#include "contact_problem.h"
 #include "fibre_mesh.h"
 #include "result.h"
 #include "scene.h"
@@ -47,6 +48,9 @@ struct ReferenceOptions {
   MPI_Comm communicator = MPI_COMM_WORLD;
   /// Prints the wall time of each phase at the end (deal.II's TimerOutput), on the first process.
   bool print_timing = false;
+  /// Receives each load step's contact problem as last solved, with the answer and the step's
+  /// status, on every process (for solvers outside fibrecheck; may be empty).
+  std::function<void(const ContactProblem&)> contact_problem;
 };
 
 /// The implicit reference (DESIGN §3): the fibres as finite-element beams (BeamModel) and every
@@ -66,6 +70,12 @@ Result solve_reference(const Scene& scene, const ReferenceOptions& options = {})
 
 /// The Gauss cells of the continuous line contact at refinement K: n·2^K for the scene's n slices.
 int continuous_cells(const Scene& scene, int K);
+
+/// Debian's OpenBLAS (which MUMPS and PETSc call) starts a thread per core in every process; with
+/// several processes on one machine that oversubscribes its cores. This gives each process of
+/// `communicator` its share of the cores on its machine (at least one thread) when OpenBLAS is the
+/// BLAS and would use more; solve_reference calls it.
+void share_cores_with_blas(MPI_Comm communicator);
 
 /// The coarsest refinement K ≤ 0 of the continuous line contact: n/2^-K cells, whole, at least 4
 /// and at most 4 times fewer than the scene's slices. The line force converges at first order, so

@@ -1,8 +1,10 @@
 #include "fem_command.h"
 
+#include <algorithm>
 #include <iostream>
 
 #include "atomic_file.h"
+#include "contact_problem.h"
 #include "exit_codes.h"
 #include "input_error.h"
 #include "mpi_session.h"
@@ -60,7 +62,7 @@ int run_fem(const FemArguments& args) {
   validate_scene(scene);
   ReferenceOptions options = reference_options(args, scene);
   // Output folders exist before the run, so that it cannot fail at the end for want of one.
-  for (const std::string& path : {args.out, args.vtk})
+  for (const std::string& path : {args.out, args.vtk, args.contact_problem})
     if (!path.empty()) create_parent_folder(path);
 
   const MpiSession mpi;
@@ -68,6 +70,10 @@ int run_fem(const FemArguments& args) {
   const bool first = dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
   if (!args.quiet && first)
     options.progress = [](const std::string& line) { std::cerr << "  " << line << "\n"; };
+  // The final step's problem, for solvers outside fibrecheck.
+  ContactProblem problem;
+  if (!args.contact_problem.empty())
+    options.contact_problem = [&](const ContactProblem& p) { problem = p; };
   Result result;
   try {
     result = solve_reference(scene, options);
@@ -87,6 +93,10 @@ int run_fem(const FemArguments& args) {
   }
   if (!args.out.empty()) write_result(args.out, result);
   if (!args.vtk.empty() && options.vtu.empty()) write_vtk(args.vtk, scene, result);
+  if (!args.contact_problem.empty()) {
+    problem.step = std::max<int>(1, static_cast<int>(result.steps.size()));
+    write_contact_problem(args.contact_problem, problem);
+  }
   return code;
 }
 
@@ -132,6 +142,10 @@ CLI::App* add_fem_command(CLI::App& app, FemArguments& args) {
                    ? ""
                    : "--vtk: the file must end in .vtu or .vtp";
       });
+  fem->add_option("--export-contact-problem", args.contact_problem,
+                  "The final step's contact problem (compliance W with its tangential blocks, "
+                  "free overlaps and slips q, mu) and the reference's answer, as JSON for "
+                  "solvers outside fibrecheck (fibrecheck-siconos reads it)");
   fem->add_flag("--quiet,-q", args.quiet, "Print nothing but errors");
   return fem;
 }

@@ -5,8 +5,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <thread>
 #include <vector>
 
+#include "blas_threads.h"
 #include "reference_solver.h"
 
 namespace fibrecheck {
@@ -55,6 +57,18 @@ TEST(ReferenceMpi, TwoProcessesGiveTheAnswerOfOne) {
   MPI_Bcast(first.data(), static_cast<int>(first.size()), MPI_DOUBLE, 0, MPI_COMM_WORLD);
   for (std::size_t i = 0; i < y.size(); ++i) EXPECT_EQ(first[i], y[i]) << i;
   EXPECT_NE(std::find(two.stages.begin(), two.stages.end(), "mpi_2_processes"), two.stages.end());
+}
+
+// Two processes on one machine share its cores with OpenBLAS: each may start at most its share of
+// threads (OpenBLAS alone would start one per core in each).
+TEST(ReferenceMpi, ProcessesShareTheCoresWithOpenBlas) {
+  if (dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) != 2)
+    GTEST_SKIP() << "run this test with mpiexec -np 2";
+  if (blas_threads() < 0) GTEST_SKIP() << "the BLAS is not OpenBLAS";
+  const Scene scene = read_scene(std::string(FIBRECHECK_SCENES_DIR) + "/two_fibres_crossing.json");
+  ASSERT_EQ(solve_reference(scene).status, Status::converged);
+  const int cores = std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+  EXPECT_LE(blas_threads(), std::max(1, cores / 2));
 }
 
 // `mpiexec -np 3 fibrecheck fem` on the two crossing fibres (run by ctest before this test, which

@@ -206,6 +206,33 @@ TEST_F(Cli, FemWritesTheSameResultSchema) {
   EXPECT_FALSE(fs::exists(dir_ + "bad.json.out"));
 }
 
+// The final step's contact problem for outside solvers: the scene's one contact, its compliance
+// and overlap, the reference's answer; a frictional scene's problem has the tangents.
+TEST_F(Cli, FemExportsTheContactProblem) {
+  const Outcome ok = run("fem -q " + scene("two_fibres_crossing") + " --out " + dir_ +
+                         "f.json --export-contact-problem " + dir_ + "p.json");
+  EXPECT_EQ(ok.code, 0) << ok.err;
+  const json problem = json::parse(slurp(dir_ + "p.json"));
+  const json fem = json::parse(slurp(dir_ + "f.json"));
+  EXPECT_EQ(problem["format"], "fibrecheck-contact-problem");
+  ASSERT_EQ(problem["contacts"].size(), 1u);
+  EXPECT_EQ(problem["contacts"][0]["tangents"], 0);
+  EXPECT_NEAR(problem["q"][0].get<double>(), 1e-3, 1e-12);  // the scene's overlap
+  // P = δ/W, the force in the result.
+  const double P = problem["reference"]["reaction"][0].get<double>();
+  EXPECT_NEAR(P * problem["W"]["values"][0].get<double>(), 1e-3, 1e-12);
+  EXPECT_NEAR(P, fem["contacts"][0]["total_force"].get<double>(), 1e-12 * P);
+  json frictional = crossing();
+  frictional["contact"]["friction"] = 0.3;
+  const Outcome with_friction = run("fem -q " + write("friction.json", frictional) +
+                                    " --export-contact-problem " + dir_ + "pf.json");
+  EXPECT_EQ(with_friction.code, 0) << with_friction.err;
+  const json pf = json::parse(slurp(dir_ + "pf.json"));
+  EXPECT_EQ(pf["contacts"][0]["tangents"], 2);
+  EXPECT_EQ(pf["q"].size(), 3u);
+  EXPECT_EQ(pf["mu"], 0.3);
+}
+
 // Each kind of bad input: one message naming what is wrong, exit code 2, nothing written.
 // Damaged scene files through the program itself (the scene reader sees thousands in-process,
 // see scene_mutation_test.cc): every one ends with exit code 0, 2 or 3 and a message, and bad
