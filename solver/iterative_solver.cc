@@ -120,6 +120,10 @@ class IterativeSolver {
   /// normal force when the last inner problem settled; the inner problem (radii fixed) is convex.
   Eigen::VectorXd bound_;
   long tresca_updates_ = 0;
+  double tresca_relaxation_ = 1.0;  ///< of the radius updates (adaptive, from 1 down to 1/64)
+  double last_tresca_change_ = INFINITY;
+  int tresca_falling_ = 0;
+  bool tresca_settled_before_ = false;
   FrictionFigures tresca_;  ///< the inner problem's residuals at the last evaluation
 
   std::vector<Contact> contacts_;
@@ -250,22 +254,58 @@ void IterativeSolver::evaluate() {
 }
 
 bool IterativeSolver::update_tresca_bounds() {
-  // Coulomb holds once the radii are μ times the normal forces they produced: each radius's change
-  // times the contact's compliance is the slip it could still cause.
+  // Coulomb holds once the radii are μ times the normal forces they produced: a slipping
+  // contact's radius must be μP, a sticking one's friction within μP. Each violation times the
+  // contact's compliance is the slip it could still cause; and the answer must satisfy Coulomb's
+  // law itself as the result reports it (no slip where |F| < μP, slip along F where |F| = μP):
+  // near the edge of the cone a radius a little short of μP lets a contact slide freely.
   double change = 0.0;
   for (std::size_t k = 0; k < contacts_.size(); ++k) {
     const double g = mu_ * contacts_[k].force;
     const Eigen::Index i = static_cast<Eigen::Index>(k);
-    change = std::max(change, std::fabs(g - bound_[i]) * self_compliance(contacts_[k], fibres_));
-    // A contact that slipped on its old circle slips on the new one.
+    const double size = contacts_[k].friction.norm();
+    // A zero radius lets the contact slip freely: its radius must become μP too.
+    const bool slipping = !(bound_[i] > 0.0) || size >= (1.0 - 1e-9) * bound_[i];
+    change = std::max(change, (slipping ? std::fabs(g - bound_[i]) : std::max(0.0, size - g)) *
+                                  self_compliance(contacts_[k], fibres_));
+  }
+  const FrictionFigures coulomb = friction_figures(contacts_, mu_, FrictionModel::coulomb);
+  change = std::max({change, coulomb.stick_residual, coulomb.slip_residual});
+  ++tresca_updates_;
+  // Relaxed when the violation stops falling: the plain map g ← μP settles into cycles on
+  // compacted tows of 100 fibres (a radius whose own normal force falls faster than it grows).
+  // Halved when the violation grows, grown again while it falls steadily. Once it is below the
+  // tolerance the radii become μP exactly, and the inner problem is solved once more with them
+  // unless they already were: the answer is then that of radii within the tolerance of μP.
+  const bool settled = change < options_.overlap_tolerance;
+  // Settled twice in a row: the last inner problem had the radii μP of the one before, so that
+  // scaling its slipping contacts to their own μP moves nothing by more than the tolerance.
+  const bool exact_before = tresca_relaxation_ == 1.0 && tresca_settled_before_;
+  tresca_settled_before_ = settled;
+  if (settled)
+    tresca_relaxation_ = 1.0;
+  else if (change > last_tresca_change_)
+    tresca_relaxation_ = std::max(tresca_relaxation_ * 0.5, 1.0 / 64.0), tresca_falling_ = 0;
+  else if (++tresca_falling_ >= 3)
+    tresca_relaxation_ = std::min(tresca_relaxation_ * 1.5, 1.0), tresca_falling_ = 0;
+  last_tresca_change_ = change;
+  for (std::size_t k = 0; k < contacts_.size(); ++k) {
+    const Eigen::Index i = static_cast<Eigen::Index>(k);
     Eigen::Vector3d& F = contacts_[k].friction;
     const double size = F.norm();
-    if (bound_[i] > 0.0 && size >= (1.0 - 1e-9) * bound_[i]) F *= g / size;
+    const bool slipping = !(bound_[i] > 0.0) || size >= (1.0 - 1e-9) * bound_[i];
+    bound_[i] += tresca_relaxation_ * (mu_ * contacts_[k].force - bound_[i]);
+    // A contact that slipped on its old circle slips on the new one. At the end, one that slipped
+    // with no friction (it pushed only after the last inner problem, with a force too small to
+    // matter: μP·C below the tolerance) takes μP along its slip, as the projected step would.
+    const double slip = contacts_[k].slip.norm();
+    if (slipping && size > 0.0)
+      F *= bound_[i] / size;
+    else if (slipping && slip > 0.0 && settled && exact_before)
+      F = bound_[i] / slip * contacts_[k].slip;
     if (coulomb_ && friction_iterate_.size() == contacts_.size()) friction_iterate_[k] = F;
-    bound_[i] = g;
   }
-  ++tresca_updates_;
-  if (change < options_.overlap_tolerance) return false;
+  if (settled && exact_before) return false;
   // A new inner problem: the momentum of the last one does not carry over.
   momentum_t_ = 1.0;
   previous_forces_ = iterate_;

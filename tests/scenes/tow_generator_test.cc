@@ -103,6 +103,7 @@ TEST(TowGenerator, StepsFromAFirstCompactionAndFriction) {
   ASSERT_EQ(path.steps.size(), 5u);
   for (int k = 0; k < 5; ++k) EXPECT_NEAR(path.steps[k].compaction, 0.8 - 0.025 * k, 1e-15);
   EXPECT_EQ(path.contact.friction, 0.2);
+  EXPECT_EQ(path.solver.max_iterations, 400000);  // room for the Tresca fixed point
   o.first_compaction = 0.6;
   EXPECT_THROW(generate_tow(o), InputError);
   o.first_compaction = 0.8;
