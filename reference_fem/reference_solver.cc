@@ -33,6 +33,7 @@
 #include "input_error.h"
 #include "load_path.h"
 #include "slip_origins.h"
+#include "subset_solve.h"
 #include "unresolvable_overlap.h"
 #include "validity.h"
 
@@ -73,27 +74,9 @@ bool active_set_solve(const Eigen::SparseMatrix<double>& W, const Eigen::VectorX
     z = Eigen::VectorXd::Zero(n);
     const Eigen::Index m = static_cast<Eigen::Index>(index.size());
     if (m == 0) return true;
-    Eigen::MatrixXd Wss(m, m);
-    Eigen::VectorXd ds(m);
-    for (Eigen::Index i = 0; i < m; ++i) {
-      ds[i] = d0[index[i]];
-      for (Eigen::Index j = 0; j < m; ++j) Wss(i, j) = W.coeff(index[i], index[j]);
-    }
-    const Eigen::LDLT<Eigen::MatrixXd> ldlt(Wss);
-    Eigen::VectorXd zs = ldlt.solve(ds);
-    if (ldlt.info() != Eigen::Success || !zs.allFinite() ||
-        ldlt.vectorD().minCoeff() <= 1e-14 * ldlt.vectorD().maxCoeff()) {
-      // Contacts that constrain the same motion (several pairs meeting at one point): W_SS is
-      // singular. Regularised by 1e-10 of its diagonal it has an answer: where the overlaps are
-      // consistent, the forces that close them to 1e-10; where they are not (the set asks one
-      // fibre to move two ways), forces growing along the null direction, which the step back
-      // to feasibility turns into dropping the contact that blocks.
-      const double epsilon = 1e-10 * Wss.diagonal().cwiseAbs().maxCoeff();
-      const Eigen::LDLT<Eigen::MatrixXd> regularised(Wss +
-                                                     epsilon * Eigen::MatrixXd::Identity(m, m));
-      zs = regularised.solve(ds);
-      if (regularised.info() != Eigen::Success || !zs.allFinite()) return false;
-    }
+    Eigen::VectorXd ds(m), zs;
+    for (Eigen::Index i = 0; i < m; ++i) ds[i] = d0[index[i]];
+    if (!solve_on_subset(W, index, ds, zs)) return false;
     for (Eigen::Index i = 0; i < m; ++i) z[index[i]] = zs[i];
     return true;
   };
