@@ -80,11 +80,15 @@ step "tolerance study: a generated 100-fibre tow against the reference on its sl
 step "stability study: two crossing fibres, the parallel fibres and the extreme catalogue"
 ./build/fibrecheck study stability scenes/two_fibres_crossing.json scenes/parallel_fibres.json \
   scenes/extreme/*.json --max-iterations 50000 --out "$out/study/stability" -q
-step "compaction study: the seed's compaction test case and a generated 19-fibre tow (mu = 0.2)"
+step "compaction study: the seed's compaction test case, generated tows of 19 and 100 fibres (mu = 0.2)"
 ./build/fibrecheck generate tow --fibres 19 --seed 2 --volume-fraction 0.35 --steps 12 \
   --final-compaction 0.7 --friction 0.2 --out "$out/scenes/tow_19_compaction.json" >/dev/null
+./build/fibrecheck generate tow --fibres 100 --slices 20 --seed 2 --volume-fraction 0.35 --steps 5 \
+  --first-compaction 0.8 --final-compaction 0.7 --friction 0.2 \
+  --out "$out/scenes/tow_100_compaction.json" >/dev/null
 ./build/fibrecheck study compaction scenes/compaction_test.json "$out/scenes/tow_19_compaction.json" \
-  --steps 6 --final-compaction 0.7 --sections 10 --out "$out/study/compaction"
+  "$out/scenes/tow_100_compaction.json" --steps 6 --final-compaction 0.7 --sections 4,10 \
+  --out "$out/study/compaction"
 step "report"
 ./build/fibrecheck report "$out/compare" "$out/study" --out "$out/report"
 echo

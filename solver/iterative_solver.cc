@@ -481,8 +481,10 @@ Result IterativeSolver::run() {
     }
     update_forces();
     if (iteration % 10 == 0 && moved_beyond_margin()) {
+      // The divergence monitor keeps its best residual across re-detections: a rule that moves
+      // the fibres enough to re-detect every few iterations (the seed's friction rule on a
+      // compacted 100-fibre tow, residual 0.03 mm) would otherwise never be judged stalled.
       detect_contacts();
-      divergence_.reset();
       if (auto why = find_unresolvable()) {
         evaluate();
         status = Status::unresolvable;
