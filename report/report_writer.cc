@@ -642,8 +642,10 @@ void compaction_studies(Report& report, const ReportData& data) {
       "force by van Wyk's p = kE(Vf^3 - Vf0^3) and Toll's p = kE(Vf^n - Vf0^n). Friction: "
       "Coulomb's law per step (stick while |F| < muN, slip against the relative motion "
       "otherwise), which both solvers solve as a Tresca fixed point (the radii muN updated "
-      "outside a convex inner problem; the reference solves each inner problem exactly by a "
-      "semismooth Newton method), and the seed's own rule (§4.3.4, Eqs. 4.29-4.33: the previous "
+      "outside a convex inner problem, relaxed; the reference solves each inner problem exactly, "
+      "by a bounded-variable active set when every contact has one tangent and by a semismooth "
+      "Newton method with crossings; an outside solver, Siconos, agrees with it on exported "
+      "problems), and the seed's own rule (§4.3.4, Eqs. 4.29-4.33: the previous "
       "resultant split along the deformed centres' normal, capped), run by the iterative "
       "solver only.");
   Table fits;
