@@ -44,7 +44,7 @@ fi
 
 # The main job: every scene through the iterative solver (a summary table), then the default suite
 # of the harness — compare on every committed scene, the slice study, the tolerance study, the
-# stability study and the compaction study — and the report. Studies keep their points: an
+# stability study, the compaction study and the scale study — and the report. Studies keep their points: an
 # interrupted run resumes.
 out=build/main
 mkdir -p "$out" build/results
@@ -89,6 +89,9 @@ step "compaction study: the seed's compaction test case, generated tows of 19 an
 ./build/fibrecheck study compaction scenes/compaction_test.json "$out/scenes/tow_19_compaction.json" \
   "$out/scenes/tow_100_compaction.json" --steps 6 --final-compaction 0.7 --sections 4,10 \
   --out "$out/study/compaction"
+step "scale study: generated tows of 100, 300 and 1000 fibres; the reference at 100 and 300 on two processes; Siconos at 100"
+./build/fibrecheck study scale --fibres 100,300,1000 --rules accelerated --reference-fibres 100,300 \
+  --peer-fibres 100 --out "$out/study/scale" -q
 step "report"
 ./build/fibrecheck report "$out/compare" "$out/study" --out "$out/report"
 echo

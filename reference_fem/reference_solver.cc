@@ -944,6 +944,7 @@ void ReferenceSolver::output_results(Result& r) {
   r.strain_energy_exact = sums[1];
   figures.strain_energy_elements = sums[2];
   r.axial_load_dropped = sums[3];
+  r.candidates = static_cast<long>(contacts_.size());
 }
 
 Result ReferenceSolver::run() {

@@ -70,6 +70,11 @@ ReportData read_report_data(const std::vector<std::string>& folders) {
         entry["folder"] = file.parent_path().string();
         data.compaction_studies.push_back(std::move(entry));
       }
+    } else if (name == "scale_study.json") {
+      const nlohmann::json j = read_json(file.string());
+      if (!j.is_object() || j.value("study", "") != "scale")
+        throw InputError(file.string(), "", "not a study written by fibrecheck study scale");
+      data.scale_studies.push_back(j);
     } else {
       continue;
     }

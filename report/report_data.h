@@ -28,11 +28,12 @@ struct ReportData {
   nlohmann::json stability_studies = nlohmann::json::array();  ///< stability_study.json entries
   /// compaction_study.json entries, each with the `folder` it was found in.
   nlohmann::json compaction_studies = nlohmann::json::array();
-  std::vector<std::string> sources;  ///< the files read
+  nlohmann::json scale_studies = nlohmann::json::array();  ///< scale_study.json objects
+  std::vector<std::string> sources;                        ///< the files read
 };
 
-/// Reads every compare.json, slice_study.json, tolerance_study.json, stability_study.json and
-/// compaction_study.json
+/// Reads every compare.json, slice_study.json, tolerance_study.json, stability_study.json,
+/// compaction_study.json and scale_study.json
 /// below `folders`. Throws InputError naming a folder that does not exist or a file that is not
 /// the harness's.
 ReportData read_report_data(const std::vector<std::string>& folders);

@@ -838,6 +838,86 @@ void compaction_studies(Report& report, const ReportData& data) {
   if (!agreement.rows.empty()) report.table(agreement);
 }
 
+std::string scale_series(const json& p) {
+  const std::string solver = p.value("solver", "");
+  const std::string method = p.value("method", "");
+  if (solver == "iterative") return "iterative, " + method;
+  if (solver == "fem")
+    return "reference, " + std::to_string(p.value("processes", 1)) + " process" +
+           (p.value("processes", 1) == 1 ? "" : "es");
+  return "Siconos " + method;
+}
+
+void scale_studies(Report& report, const ReportData& data) {
+  if (data.scale_studies.empty()) return;
+  report.section(
+      "Scale",
+      "Generated tows of growing size (fibrecheck study scale), each run its own process: the "
+      "iterative solver's rules, the reference under mpiexec and Siconos on the reference's "
+      "exported contact problem (Lemke's pivoting, projected Gauss-Seidel and a Newton method on "
+      "the linear complementarity problem). Time is the solver's own (without start-up and "
+      "files); peak memory is the process's (the largest process's under mpiexec; the program "
+      "links the finite-element libraries, about 150 MB of it). For the reference the iterations "
+      "are its outer iterations; its active-set passes are in its result files.");
+  for (const json& study : data.scale_studies) {
+    Table t;
+    t.label = "scale";
+    t.caption = "Cost against tow size (" + std::to_string(study.value("slices", 0)) +
+                " slices, seed " + std::to_string(study.value("seed", 0)) +
+                "): candidate and pushing contacts, iterations, time, time per iteration and peak "
+                "memory; for Siconos, its distance from the reference's answer.";
+    t.header = {"Fibres",     "Run",      "Status",       "Candidates", "Active",
+                "Iterations", "Time (s)", "ms/iteration", "Peak (MB)",  "Against reference"};
+    std::vector<std::string> series;
+    std::map<std::string, std::ostringstream> rows;
+    for (const json& p : study["points"]) {
+      const std::string name = scale_series(p);
+      const bool iterative = p.value("solver", "") != "fem";
+      const double agreement = json_number(p, "agreement");
+      t.rows.push_back(
+          {std::to_string(p.value("fibres", 0)), name, p.value("status", ""),
+           std::to_string(p.value("candidates", 0L)), std::to_string(p.value("active", 0L)),
+           std::to_string(p.value("iterations", 0L)), seconds(json_number(p, "time_s")),
+           iterative ? sci(json_number(p, "ms_per_iteration")) : "–",
+           fixed3(json_number(p, "peak_memory_mb")), agreement >= 0.0 ? sci(agreement) : "–"});
+      if (p.value("status", "") != "converged" || !(json_number(p, "time_s") > 0.0)) continue;
+      if (std::find(series.begin(), series.end(), name) == series.end()) series.push_back(name);
+      rows[name] << p.value("fibres", 0) << " " << json_number(p, "time_s") << "\n";
+    }
+    std::string exponents;
+    for (const json& e : study["exponents"]) {
+      std::ostringstream line;
+      line.precision(2);
+      line << std::fixed
+           << scale_series({{"solver", e.value("solver", "")},
+                            {"method", e.value("method", "")},
+                            {"processes", 2}})
+           << " " << json_number(e, "time");
+      exponents += (exponents.empty() ? "" : "; ") + line.str();
+    }
+    if (!exponents.empty()) t.caption += " Time grows as fibres^a with a: " + exponents + ".";
+    report.table(t);
+    std::vector<Gnuplot::Series> data_series;
+    std::string plot;
+    for (const std::string& name : series) {
+      const int k = static_cast<int>(data_series.size());
+      data_series.push_back({rows[name].str()});
+      plot += std::string(plot.empty() ? "" : ", ") + "@DATA" + std::to_string(k) +
+              "@ using 1:2 with linespoints pt " + std::to_string(5 + 2 * k) +
+              " ps 1.5 lw 2 title '" + name + "'";
+    }
+    if (!plot.empty())
+      report.figure("scale_time",
+                    "Solver time against the number of fibres (log-log), converged runs only"
+                    " (exponents in the table's caption).",
+                    "set xlabel 'fibres'\nset ylabel 'time (s)'\nset logscale xy\nset format y "
+                    "'10^{%L}'\nset key top left\nset grid\nset offsets graph 0.05, graph 0.05, "
+                    "0, 0\nplot " +
+                        plot,
+                    data_series);
+  }
+}
+
 }  // namespace
 
 ReportSummary write_report(const ReportData& data, const std::string& folder) {
@@ -847,6 +927,7 @@ ReportSummary write_report(const ReportData& data, const std::string& folder) {
   tolerance_studies(report, data);
   stability_studies(report, data);
   compaction_studies(report, data);
+  scale_studies(report, data);
   return report.finish(data.sources);
 }
 

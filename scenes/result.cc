@@ -163,6 +163,7 @@ json result_to_json(const Result& r) {
   j["c"] = r.c;
   j["c_stable_limit"] = r.c_stable_limit;
   j["axial_load_dropped"] = r.axial_load_dropped;
+  j["candidates"] = r.candidates;
   j["max_deflection_over_radius"] = r.max_deflection_over_radius;
   j["max_slope"] = r.max_slope;
   if (r.finite_elements) {
@@ -263,6 +264,7 @@ Result result_from_json(const json& j, const std::string& source) {
     r.c = j.value("c", 0.0);
     r.c_stable_limit = j.value("c_stable_limit", 0.0);
     r.axial_load_dropped = j.value("axial_load_dropped", 0.0);
+    r.candidates = j.value("candidates", 0L);
     r.max_deflection_over_radius = j.value("max_deflection_over_radius", 0.0);
     r.max_slope = j.value("max_slope", 0.0);
     if (j.contains("unknowns")) {

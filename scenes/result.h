@@ -145,6 +145,9 @@ struct Result {
   double c = 0.0;                    ///< N/mm, step used (per point contact)
   double c_stable_limit = 0.0;       ///< N/mm, estimate of 2/λmax(W)
   double axial_load_dropped = 0.0;   ///< N, sum of |axial parts| dropped by the beam model
+  /// Contact candidates of the final state (points the detector found within its margin, pushing
+  /// or not): the size of the contact problem.
+  long candidates = 0;
   /// Validity of small-deflection beam theory: the largest transverse displacement over the
   /// fibre's radius and the largest slope (rad) of any fibre, from the result's samples.
   double max_deflection_over_radius = 0.0;

@@ -540,6 +540,7 @@ Result IterativeSolver::assemble(Clock::time_point start) {
   r.c = step_;
   r.c_stable_limit = lambda_max_ > 0.0 ? 2.0 / lambda_max_ : 0.0;
   r.axial_load_dropped = superposition_.axial_load_dropped(contacts_, force_on_a_);
+  r.candidates = static_cast<long>(contacts_.size());
   r.warnings = warnings_;
   if (mu_ > 0.0) {
     detector_.geometry().measure(contacts_, u_a_, u_b_, true);

@@ -1,11 +1,14 @@
 #include "study_command.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <iostream>
 
 #include "compaction_study.h"
 #include "exit_codes.h"
 #include "input_error.h"
+#include "program_runner.h"
+#include "scale_study.h"
 #include "scene.h"
 #include "slice_study.h"
 #include "solvers.h"
@@ -17,7 +20,58 @@
 
 namespace fibrecheck {
 
+namespace {
+
+int run_scale(const StudyArguments& args) {
+  ScaleStudyOptions o;
+  o.fibres = args.fibres;
+  o.slices = args.tow_slices;
+  o.seed = args.tow_seed;
+  o.rules = args.rules;
+  o.seed_c = args.seed_c;
+  // An empty list on the command line ('' or 0) means none.
+  auto sizes = [](std::vector<int> list) {
+    list.erase(std::remove(list.begin(), list.end(), 0), list.end());
+    return list;
+  };
+  o.reference_fibres = sizes(args.reference_fibres);
+  o.processes = args.processes;
+  o.peer_fibres = sizes(args.peer_fibres);
+  o.peer_solvers = args.peer_solvers;
+  o.program = this_program();
+  o.peer_program = program_beside_this("fibrecheck-siconos");
+  o.quiet = args.quiet;
+  if (!o.reference_fibres.empty() && !have_reference())
+    throw InputError("command line", "--reference-fibres",
+                     "this build has no finite-element reference (-DFIBRECHECK_WITH_FEM=ON); "
+                     "give --reference-fibres with no sizes to run the iterative solver only");
+  if (o.processes > 1 && !o.reference_fibres.empty()) {
+    o.mpiexec = find_on_path("mpiexec");
+    if (o.mpiexec.empty())
+      throw InputError("command line", "--processes",
+                       "no mpiexec on PATH (Debian: openmpi-bin); use --processes 1");
+  }
+  const ScaleStudy study = run_scale_study(o, run_program, args.out);
+  if (!args.quiet) {
+    std::printf("%7s %-9s %-12s %3s %-14s %10s %9s %10s %10s %10s %10s\n", "fibres", "solver",
+                "method", "np", "status", "candidates", "active", "iterations", "time_s", "ms/iter",
+                "peak_MB");
+    for (const ScalePoint& p : study.points)
+      std::printf("%7d %-9s %-12s %3d %-14s %10ld %9ld %10ld %10.3f %10.4f %10.1f\n", p.fibres,
+                  p.solver.c_str(), p.method.c_str(), p.processes, p.status.c_str(), p.candidates,
+                  p.active, p.iterations, p.time_s, p.ms_per_iteration(), p.peak_memory_mb);
+    for (const ScaleExponent& e : study.exponents)
+      std::printf("  %s %s: time ~ fibres^%.2f, peak memory ~ fibres^%.2f (%d sizes)\n",
+                  e.solver.c_str(), e.method.c_str(), e.time, e.memory, e.sizes);
+    std::cout << "study written to " << args.out << "\n";
+  }
+  return kExitConverged;
+}
+
+}  // namespace
+
 int run_study(const StudyArguments& args) {
+  if (args.study == "scale") return run_scale(args);
   if (args.scenes.empty()) throw InputError("command line", "", "no scene file given (see --help)");
   const std::vector<Scene> scenes = read_scenes(args.scenes);
   for (int n : args.slices)
@@ -174,6 +228,42 @@ CLI::App* add_study_command(CLI::App& app, StudyArguments& args) {
       ->add_option("--sections", args.sections,
                    "Steps whose state is kept for cross-section pictures (the last always is)")
       ->delimiter(',');
+  CLI::App* scale = study->add_subcommand(
+      "scale",
+      "Time, iterations and peak memory against the number of fibres on generated tows: each "
+      "rule, the reference (under mpiexec) and Siconos on the reference's problem");
+  scale->add_option("--out", args.out, "Folder of the study's data")->required();
+  scale->add_option("--fibres", args.fibres, "Tow sizes for the iterative rules (default 100,1000)")
+      ->delimiter(',');
+  scale->add_option("--seed-c", args.seed_c, "The seed rule's step c in N/mm")
+      ->check(CLI::PositiveNumber);
+  scale->add_option("--slices", args.tow_slices, "Slices of the generated tows (default 100)")
+      ->check(CLI::Range(1, 100000));
+  scale->add_option("--seed", args.tow_seed, "Seed of the generated tows (default 3)");
+  scale
+      ->add_option("--rules", args.rules,
+                   "Iterative rules (default auto,accelerated; seed needs --seed-c)")
+      ->delimiter(',')
+      ->check(CLI::IsMember({"seed", "auto", "accelerated"}));
+  scale
+      ->add_option("--reference-fibres", args.reference_fibres,
+                   "Sizes the reference runs at (default 100; none: --reference-fibres 0)")
+      ->delimiter(',')
+      ->expected(0, -1);
+  scale->add_option("--processes", args.processes, "MPI processes of the reference (default 2)")
+      ->check(CLI::Range(1, 1024));
+  scale
+      ->add_option("--peer-fibres", args.peer_fibres,
+                   "Sizes whose reference problem Siconos solves again (default 100; none: 0)")
+      ->delimiter(',')
+      ->expected(0, -1);
+  scale
+      ->add_option("--peer-solvers", args.peer_solvers,
+                   "Siconos solvers of the frictionless problem: lemke (the default), pgs, newton")
+      ->delimiter(',')
+      ->check(CLI::IsMember({"lemke", "pgs", "newton"}));
+  scale->add_flag("--quiet,-q", args.quiet, "Print nothing but errors");
+  scale->callback([&args, scale] { args.study = scale->get_name(); });
   return study;
 }
 

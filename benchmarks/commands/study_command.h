@@ -6,7 +6,8 @@
 
 namespace fibrecheck {
 
-/// `fibrecheck study slices|tolerance|stability|compaction SCENE... --out DIR [options]`: one study
+/// `fibrecheck study slices|tolerance|stability|compaction SCENE... --out DIR [options]`, or
+/// `fibrecheck study scale --out DIR [--fibres N,...] [options]` on generated tows: one study
 /// on the scenes, each point written to DIR when done (a study run again computes only what is
 /// missing), then its CSV and JSON.
 struct StudyArguments {
@@ -21,6 +22,13 @@ struct StudyArguments {
   int steps = 0;  ///< compaction: steps for scenes without a load path
   double final_compaction = 0.7;
   std::vector<int> sections;
+  /// scale: the generated tows and what runs on them (scale_study.h).
+  std::vector<int> fibres{100, 1000}, reference_fibres{100}, peer_fibres{100};
+  int tow_slices = 100;
+  unsigned long tow_seed = 3;
+  std::vector<std::string> rules{"auto", "accelerated"}, peer_solvers{"lemke"};
+  double seed_c = 0.0;
+  int processes = 2;
   bool quiet = false;
 };
 

@@ -233,6 +233,69 @@ TEST_F(Cli, FemExportsTheContactProblem) {
   EXPECT_EQ(pf["mu"], 0.3);
 }
 
+#ifdef FIBRECHECK_HAVE_SICONOS
+// The scale study on two small tows: every run its own process, the reference and Siconos at the
+// smaller; a second run computes nothing again; the report gains its Scale table and figure.
+TEST_F(Cli, ScaleStudyMeasuresEveryRunAndResumes) {
+  const std::string out = dir_ + "scale";
+  const std::string args =
+      "study scale --fibres 7,19 --slices 10 --reference-fibres 7 "
+      "--peer-fibres 7 --peer-solvers lemke,pgs,newton --processes 1 -q "
+      "--out " +
+      out;
+  const Outcome ok = run(args);
+  ASSERT_EQ(ok.code, 0) << ok.err;
+  const json study = json::parse(slurp(out + "/scale_study.json"));
+  int iterative = 0, fem = 0, siconos = 0;
+  for (const json& p : study["points"]) {
+    SCOPED_TRACE(p.dump());
+    EXPECT_EQ(p["status"], "converged");
+    EXPECT_GT(p["candidates"].get<long>(), 0);
+    EXPECT_GT(p["active"].get<long>(), 0);
+    EXPECT_LE(p["active"].get<long>(), p["candidates"].get<long>());
+    EXPECT_GT(p["peak_memory_mb"].get<double>(), 1.0);
+    if (p["solver"] == "iterative") {
+      ++iterative;
+      EXPECT_GT(p["iterations"].get<long>(), 0);
+    }
+    if (p["solver"] == "fem") {
+      ++fem;
+      EXPECT_GT(p["unknowns"].get<long>(), 0);
+    }
+    if (p["solver"] == "siconos") {
+      ++siconos;
+      // The same problem as the reference's, solved again: the same answer.
+      EXPECT_GE(p["agreement"].get<double>(), 0.0);
+      EXPECT_LE(p["agreement"].get<double>(), 1e-8);
+    }
+  }
+  EXPECT_EQ(iterative, 4);  // auto and accelerated at 7 and 19 fibres
+  EXPECT_EQ(fem, 1);
+  EXPECT_EQ(siconos, 3);  // lemke, pgs, newton
+  EXPECT_EQ(study["exponents"].size(), 2u);
+  // The same pushing contacts in every run of the 7-fibre tow.
+  long active = -1;
+  for (const json& p : study["points"])
+    if (p["fibres"] == 7) {
+      if (active < 0) active = p["active"].get<long>();
+      EXPECT_EQ(p["active"].get<long>(), active) << p.dump();
+    }
+  const std::string points = slurp(out + "/scale_study.points.jsonl");
+  ASSERT_EQ(run(args).code, 0);
+  EXPECT_EQ(slurp(out + "/scale_study.points.jsonl"), points);
+  ASSERT_EQ(run("report " + out + " --out " + dir_ + "report").code, 0);
+  const std::string report = slurp(dir_ + "report/report.md");
+  EXPECT_NE(report.find("## Scale"), std::string::npos);
+  EXPECT_NE(report.find("Siconos lemke"), std::string::npos);
+  // A peer size the reference does not run: bad input, nothing written.
+  const Outcome bad =
+      run("study scale --fibres 7 --reference-fibres 7 --peer-fibres 19 -q --out " + dir_ + "bad");
+  EXPECT_EQ(bad.code, 2);
+  EXPECT_NE(bad.err.find("--peer-fibres"), std::string::npos) << bad.err;
+  EXPECT_FALSE(fs::exists(dir_ + "bad"));
+}
+#endif
+
 // Each kind of bad input: one message naming what is wrong, exit code 2, nothing written.
 // Damaged scene files through the program itself (the scene reader sees thousands in-process,
 // see scene_mutation_test.cc): every one ends with exit code 0, 2 or 3 and a message, and bad
