@@ -148,6 +148,17 @@ ScaleStudy run_scale_study(const ScaleStudyOptions& o, const ProgramRunner& run,
       store.add(key, point_json(p));
       study.points.push_back(std::move(p));
     };
+    // A solver's run: its process's figures, then its result file's (or why there is none).
+    auto solve = [&](ScalePoint& p, const std::vector<std::string>& command,
+                     const std::string& out) {
+      const ProgramRun r = run(command);
+      p.process_time_s = r.wall_time_s;
+      p.peak_memory_mb = r.peak_memory_mb;
+      if ((r.exit_code == 0 || r.exit_code == 3) && fs::exists(out))
+        take_result(p, out);
+      else
+        p.status = failed_status(r);
+    };
     auto start = [&](const std::string& key, const std::string& what) {
       if (store.has(key)) {
         progress.skip();
@@ -173,13 +184,7 @@ ScaleStudy run_scale_study(const ScaleStudyOptions& o, const ProgramRunner& run,
           c << o.seed_c;
           command.insert(command.end(), {"--c", c.str()});
         }
-        const ProgramRun r = run(command);
-        p.process_time_s = r.wall_time_s;
-        p.peak_memory_mb = r.peak_memory_mb;
-        if ((r.exit_code == 0 || r.exit_code == 3) && fs::exists(out))
-          take_result(p, out);
-        else
-          p.status = failed_status(r);
+        solve(p, command, out);
         keep(key, p);
       }
     const std::string problem = (fs::path(folder) / "problems" / (name + ".problem.json")).string();
@@ -199,13 +204,7 @@ ScaleStudy run_scale_study(const ScaleStudyOptions& o, const ProgramRunner& run,
           command.push_back("--export-contact-problem");
           command.push_back(problem);
         }
-        const ProgramRun r = run(command);
-        p.process_time_s = r.wall_time_s;
-        p.peak_memory_mb = r.peak_memory_mb;
-        if ((r.exit_code == 0 || r.exit_code == 3) && fs::exists(out))
-          take_result(p, out);
-        else
-          p.status = failed_status(r);
+        solve(p, command, out);
         keep(key, p);
       }
     }
