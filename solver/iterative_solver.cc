@@ -259,13 +259,17 @@ bool IterativeSolver::update_tresca_bounds() {
   // contact's compliance is the slip it could still cause; and the answer must satisfy Coulomb's
   // law itself as the result reports it (no slip where |F| < μP, slip along F where |F| = μP):
   // near the edge of the cone a radius a little short of μP lets a contact slide freely.
+  // Slipping on its circle (a zero radius lets the contact slip freely: its radius must become μP
+  // too).
+  auto on_its_circle = [&](Eigen::Index i, double size) {
+    return !(bound_[i] > 0.0) || size >= (1.0 - 1e-9) * bound_[i];
+  };
   double change = 0.0;
   for (std::size_t k = 0; k < contacts_.size(); ++k) {
     const double g = mu_ * contacts_[k].force;
     const Eigen::Index i = static_cast<Eigen::Index>(k);
     const double size = contacts_[k].friction.norm();
-    // A zero radius lets the contact slip freely: its radius must become μP too.
-    const bool slipping = !(bound_[i] > 0.0) || size >= (1.0 - 1e-9) * bound_[i];
+    const bool slipping = on_its_circle(i, size);
     change = std::max(change, (slipping ? std::fabs(g - bound_[i]) : std::max(0.0, size - g)) *
                                   self_compliance(contacts_[k], fibres_));
   }
@@ -293,7 +297,7 @@ bool IterativeSolver::update_tresca_bounds() {
     const Eigen::Index i = static_cast<Eigen::Index>(k);
     Eigen::Vector3d& F = contacts_[k].friction;
     const double size = F.norm();
-    const bool slipping = !(bound_[i] > 0.0) || size >= (1.0 - 1e-9) * bound_[i];
+    const bool slipping = on_its_circle(i, size);
     bound_[i] += tresca_relaxation_ * (mu_ * contacts_[k].force - bound_[i]);
     // A contact that slipped on its old circle slips on the new one. At the end, one that slipped
     // with no friction (it pushed only after the last inner problem, with a force too small to

@@ -97,8 +97,8 @@ int main(int argc, char** argv) {
   try {
     const ContactProblem p = fibrecheck::read_contact_problem(problem_file);
     if (solvers.empty()) solvers = fibrecheck::applicable_solvers(p);
+    const std::vector<std::string> known = fibrecheck::applicable_solvers(p);
     for (const std::string& s : solvers) {
-      const std::vector<std::string> known = fibrecheck::applicable_solvers(p);
       if (std::find(known.begin(), known.end(), s) == known.end()) {
         std::string list;
         for (const std::string& k : known) list += (list.empty() ? "" : ", ") + k;
