@@ -334,7 +334,7 @@ void draw_cross_section(Report& report, const std::string& name, const std::stri
           sci(largest_friction) + " N, one radius long).",
       "set size ratio -1\n" + ranges +
           "set xlabel 'cross-section axis 1 (mm)'\nset ylabel 'cross-section axis 2 (mm)'\nset "
-          "cblabel '|M| (N mm)'\nset rmargin 14\nset palette defined (0 '#2040c0', "
+          "cblabel '|M| (N mm)'\nset cbrange [0:*]\nset rmargin 14\nset palette defined (0 '#2040c0', "
           "0.5 '#20b040', 1 '#e02020')\nset key off\nset grid\nset format cb '%.1e'\nset clip "
           "two\nplot @DATA0@ using 1:2:3:4 with circles lc palette lw 3 fs empty, @DATA1@ using "
           "1:2:3:4 with vectors nohead lw 3 lc rgb '#e0a000', @DATA2@ using 1:2:3:4 with vectors "
