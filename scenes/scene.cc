@@ -110,6 +110,8 @@ const char* to_string(UpdateRule rule) {
       return "auto";
     case UpdateRule::accelerated:
       return "accelerated";
+    case UpdateRule::conjugate_gradient:
+      return "cg";
   }
   return "?";
 }
@@ -127,8 +129,9 @@ UpdateRule parse_update_rule(const std::string& text, const std::string& file,
   if (text == "seed") return UpdateRule::seed;
   if (text == "auto") return UpdateRule::automatic;
   if (text == "accelerated") return UpdateRule::accelerated;
+  if (text == "cg") return UpdateRule::conjugate_gradient;
   throw InputError(file, field,
-                   "must be \"seed\", \"auto\" or \"accelerated\", got \"" + text + "\"");
+                   "must be \"seed\", \"auto\", \"accelerated\" or \"cg\", got \"" + text + "\"");
 }
 
 Scene scene_from_json(const json& document, const std::string& source) {
@@ -255,6 +258,10 @@ void validate_scene(const Scene& scene) {
   const std::string& file = scene.source;
   if (scene.solver.rule == UpdateRule::seed && !scene.solver.c)
     throw InputError(file, "solver.c", "is required by rule \"seed\" (the step c of P' = P + c·d)");
+  if (scene.solver.rule == UpdateRule::conjugate_gradient && scene.contact.friction > 0.0)
+    throw InputError(file, "solver.rule",
+                     "rule \"cg\" solves frictionless contact only; with contact.friction use "
+                     "\"accelerated\"");
   if (scene.contact.slices < 1) throw InputError(file, "contact.slices", "must be at least 1");
   if (scene.solver.c && !(*scene.solver.c > 0.0 && std::isfinite(*scene.solver.c)))
     throw InputError(file, "solver.c", "must be a positive finite number");

@@ -54,7 +54,7 @@ struct ContactSettings {
   double parallel_angle_deg = 10.0;
 };
 
-enum class UpdateRule { seed, automatic, accelerated };
+enum class UpdateRule { seed, automatic, accelerated, conjugate_gradient };
 
 /// Force update and stopping (seed §4.3.2, §4.3.6).
 struct SolverSettings {

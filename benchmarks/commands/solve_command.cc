@@ -133,8 +133,8 @@ CLI::App* add_solve_command(CLI::App& app, SolveArguments& args) {
   solve->add_option("--out-dir", args.out_dir, "Folder for SCENE_NAME.result.json files");
   solve->add_option("--slices", args.slices, "Cross-sections n (overrides contact.slices)")
       ->check(CLI::Range(1, 1000000));
-  solve->add_option("--rule", args.rule, "Force update rule: seed | auto | accelerated")
-      ->check(CLI::IsMember({"seed", "auto", "accelerated"}));
+  solve->add_option("--rule", args.rule, "Force update rule: seed | auto | accelerated | cg")
+      ->check(CLI::IsMember({"seed", "auto", "accelerated", "cg"}));
   solve->add_option("--c", args.c, "Step c of P' = P + c*d in N/mm (rule seed)")
       ->check(CLI::PositiveNumber);
   solve->add_option("--vtk", args.vtk, "ParaView file (.vtp) of fibres and contact forces");
