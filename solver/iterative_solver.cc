@@ -151,7 +151,6 @@ class IterativeSolver {
   std::vector<int> members_;               ///< index in candidates_ of each contacts_[i]
   Superposition candidate_superposition_;  ///< attached to candidates_
   std::vector<double> synced_overlap_;     ///< of every candidate at the last revision
-  double working_margin_ = 0.0;            ///< δ, mm
   // Scratch of the revisions.
   std::vector<Eigen::Vector3d> revision_force_, revision_u_a_, revision_u_b_;
   std::vector<int> revision_slot_;
@@ -247,7 +246,6 @@ void IterativeSolver::enter_working_set() {
   candidates_ = contacts_;
   candidate_superposition_.attach(candidates_);
   synced_overlap_.clear();
-  working_margin_ = margin_;
   members_.resize(candidates_.size());
   for (std::size_t i = 0; i < candidates_.size(); ++i) members_[i] = static_cast<int>(i);
   working_ = true;
@@ -266,35 +264,35 @@ bool IterativeSolver::update_working_set() {
   }
   candidate_superposition_.contact_displacements(candidates_, revision_force_, true, revision_u_a_,
                                                  revision_u_b_);
-  // δ: four times the largest rise of an overlap since the last revision (ten iterations), at
-  // least 2·t_d, at most the candidate margin.
+  // A candidate joins when its overlap, extrapolated from its own rise since the last revision
+  // over three more such intervals, comes within 2·t_d of touching (at the first revision, when
+  // it is within the candidate margin).
   const bool first = synced_overlap_.size() != candidates_.size();
-  synced_overlap_.resize(candidates_.size(), 0.0);
   revision_overlap_.resize(candidates_.size());
   const ContactGeometry& geometry = detector_.geometry();
-  double rise = 0.0;
-#pragma omp parallel for schedule(static) reduction(max : rise) if (n > 4096)
-  for (int i = 0; i < n; ++i) {
-    const double d =
+#pragma omp parallel for schedule(static) if (n > 4096)
+  for (int i = 0; i < n; ++i)
+    revision_overlap_[i] =
         geometry.overlap_along_normal(candidates_[i], revision_u_a_[i], revision_u_b_[i]);
-    rise = std::max(rise, d - synced_overlap_[i]);
-    revision_overlap_[i] = d;
-  }
-  if (!first) working_margin_ = std::clamp(4.0 * rise, 2.0 * options_.overlap_tolerance, margin_);
-  synced_overlap_.swap(revision_overlap_);
-  const std::vector<double>& overlap = synced_overlap_;
+  if (first) synced_overlap_ = revision_overlap_;
+  const std::vector<double>& overlap = revision_overlap_;
   const std::vector<int>& slot = revision_slot_;
+  const double near = 2.0 * options_.overlap_tolerance;
   const bool momentum = iterate_.size() == static_cast<Eigen::Index>(contacts_.size());
   std::vector<int> members;
   members.reserve(members_.size() + 64);
   for (int i = 0; i < n; ++i) {
     const int k = slot[i];
+    const double predicted =
+        first ? overlap[i] + margin_
+              : overlap[i] + 3.0 * std::max(0.0, overlap[i] - synced_overlap_[i]);
     const bool needed =
-        overlap[i] > -working_margin_ ||
+        predicted > -near ||
         (k >= 0 && (contacts_[k].force > 0.0 ||
                     (momentum && (iterate_[k] > 0.0 || previous_forces_[k] > 0.0))));
     if (needed) members.push_back(static_cast<int>(i));
   }
+  synced_overlap_.swap(revision_overlap_);
   if (members == members_ && contacts_.size() == members.size()) return false;
   // Rebuild: members keep their state and momentum, newcomers start from P = 0.
   std::vector<Contact> working(members.size());
@@ -303,7 +301,7 @@ bool IterativeSolver::update_working_set() {
   for (std::size_t j = 0; j < members.size(); ++j) {
     const int k = slot[members[j]];
     working[j] = k >= 0 ? contacts_[k] : candidates_[members[j]];
-    working[j].overlap = overlap[members[j]];
+    working[j].overlap = synced_overlap_[members[j]];
     if (k < 0) working[j].force = 0.0;
     if (k >= 0 && momentum) iterate[j] = iterate_[k], previous[j] = previous_forces_[k];
   }
@@ -610,12 +608,15 @@ Result IterativeSolver::run() {
     if (options_.progress && seconds_since(last_progress) >= options_.progress_interval_s) {
       last_progress = Clock::now();
       options_.progress({iteration, options_.max_iterations, residuals_.overlap,
-                         residuals_.gap_force, options_.overlap_tolerance, contacts_.size(),
-                         seconds_since(start)});
+                         residuals_.gap_force, options_.overlap_tolerance,
+                         working_ ? candidates_.size() : contacts_.size(), seconds_since(start)});
     }
     update_forces();
     if (working_ && iteration % 20 == 0) update_working_set();
-    if (iteration % 10 == 0 && moved_beyond_margin()) {
+    // The working set's rules move the fibres smoothly: their shape is checked against the
+    // candidate margin every 50 iterations (a deflection field of every fibre at the grid costs
+    // more than an iteration on the working set); the others every 10.
+    if (iteration % (working_ ? 50 : 10) == 0 && moved_beyond_margin()) {
       // The divergence monitor keeps its best residual across re-detections: a rule that moves
       // the fibres enough to re-detect every few iterations (the seed's friction rule on a
       // compacted 100-fibre tow, residual 0.03 mm) would otherwise never be judged stalled.
