@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "parallel_work.h"
+
 namespace fibrecheck {
 
 Residuals measure_residuals(const std::vector<Contact>& contacts) {
@@ -11,7 +13,7 @@ Residuals measure_residuals(const std::vector<Contact>& contacts) {
   int non_finite = 0;
   const int n = static_cast<int>(contacts.size());
 #pragma omp parallel for schedule(static) reduction(max : max_overlap, gap_force) \
-    reduction(+ : non_finite) if (n > 4096)
+    reduction(+ : non_finite) if (n > kParallelContacts)
   for (int k = 0; k < n; ++k) {
     const Contact& c = contacts[k];
     if (!std::isfinite(c.overlap)) ++non_finite;

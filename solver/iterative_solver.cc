@@ -19,6 +19,7 @@
 #include "fibre_stiffness.h"
 #include "friction.h"
 #include "load_path.h"
+#include "parallel_work.h"
 #include "projected_cg.h"
 #include "slip_origins.h"
 #include "superposition.h"
@@ -186,7 +187,7 @@ void IterativeSolver::gather_forces() {
   const Contact* const contact = contacts_.data();
   Eigen::Vector3d* const force = force_on_a_.data();
   const int n = static_cast<int>(contacts_.size());
-#pragma omp parallel for schedule(static) if (n > 4096)
+#pragma omp parallel for schedule(static) if (n > kParallelContacts)
   for (int k = 0; k < n; ++k) force[k] = contact[k].force_on_a();
   forces_gathered_ = true;
 }
@@ -458,7 +459,7 @@ void IterativeSolver::update_forces() {
   // (Eq. 4.31). The accelerated rule's restart test (gradient restart: −(d, s)·(r_{k+1} − r_k) > 0)
   // is summed in the same pass.
   double uphill = 0.0;
-#pragma omp parallel for schedule(static) reduction(+ : uphill) if (n > 4096)
+#pragma omp parallel for schedule(static) reduction(+ : uphill) if (n > kParallelContacts)
   for (Eigen::Index k = 0; k < n; ++k) {
     const Contact& c = contact[k];
     const double step = seed ? step_ * c.weight : step_;
@@ -482,7 +483,7 @@ void IterativeSolver::update_forces() {
     previous_forces_.swap(iterate_);  // P_{k−1} ← P_k, without copying
     iterate_.swap(next);              // P_k ← P'
     next.resize(n);
-#pragma omp parallel for schedule(static) if (n > 4096)
+#pragma omp parallel for schedule(static) if (n > kParallelContacts)
     for (Eigen::Index k = 0; k < n; ++k)
       next[k] = std::max(0.0, iterate_[k] + beta * (iterate_[k] - previous_forces_[k]));
     if (coulomb) {
@@ -497,7 +498,7 @@ void IterativeSolver::update_forces() {
   }
   const ContactGeometry& geometry = detector_.geometry();
   const bool seed_friction = seed_friction_;
-#pragma omp parallel for schedule(static) if (n > 4096)
+#pragma omp parallel for schedule(static) if (n > kParallelContacts)
   for (Eigen::Index k = 0; k < n; ++k) {
     Contact& c = contact[k];
     if (coulomb) c.friction = next_friction_[k];

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "beam.h"
+#include "parallel_work.h"
 
 namespace fibrecheck {
 
@@ -64,10 +65,13 @@ void Superposition::attach(const std::vector<Contact>& contacts) {
     if (k.kind != ContactKind::wall)
       slots_[k.b].push_back({k.s_b * fibres_[k.b].length, static_cast<int>(c), -1});
   }
-  for (auto& list : slots_)
+  total_slots_ = 0;
+  for (auto& list : slots_) {
     std::sort(list.begin(), list.end(), [](const Slot& x, const Slot& y) {
       return x.a < y.a || (x.a == y.a && x.contact < y.contact);
     });
+    total_slots_ += static_cast<long>(list.size());
+  }
 }
 
 // Inline: it is the first half of the inner loop of every evaluation.
@@ -105,7 +109,7 @@ void Superposition::contact_displacements(const std::vector<Contact>& contacts,
   u_b.resize(contacts.size());
   double energy = 0.0;
   const int n_fibres = static_cast<int>(fibres_.size());
-#pragma omp parallel reduction(+ : energy) if (n_fibres > 64)
+#pragma omp parallel reduction(+ : energy) if (total_slots_ > kParallelContacts)
   {
     thread_local std::vector<Eigen::Array2d> p;  // the loads of one fibre, reused between calls
     // Plain pointers, private to the thread: the compiler need not reload them after each store.

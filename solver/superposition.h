@@ -68,6 +68,7 @@ class Superposition {
   std::vector<Eigen::Vector2d> distributed_;                 ///< per fibre, q along e1, e2 (N/mm)
   std::vector<double> external_axial_;                       ///< per fibre, dropped axial N
   std::vector<std::vector<Slot>> slots_;                     ///< per fibre, sorted by a
+  long total_slots_ = 0;
 };
 
 }  // namespace fibrecheck

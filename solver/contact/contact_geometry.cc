@@ -1,6 +1,7 @@
 #include "contact_geometry.h"
 
 #include "closest_points.h"
+#include "parallel_work.h"
 
 namespace fibrecheck {
 
@@ -81,7 +82,7 @@ void ContactGeometry::measure(std::vector<Contact>& contacts,
   Contact* const contact = contacts.data();
   const Eigen::Vector3d* const side_a = u_a.data();
   const Eigen::Vector3d* const side_b = u_b.data();
-#pragma omp parallel for schedule(static) if (count > 4096)
+#pragma omp parallel for schedule(static) if (count > kParallelContacts)
   for (int k = 0; k < count; ++k) {
     Contact& c = contact[k];
     c.overlap = overlap_along_normal(c, side_a[k], side_b[k]);
