@@ -89,9 +89,9 @@ step "compaction study: the seed's compaction test case, generated tows of 19 an
 ./build/fibrecheck study compaction scenes/compaction_test.json "$out/scenes/tow_19_compaction.json" \
   "$out/scenes/tow_100_compaction.json" --steps 6 --final-compaction 0.7 --sections 10 \
   --out "$out/study/compaction"
-step "scale study: generated tows of 100, 300 and 1000 fibres; the reference at 100 and 300 on two processes; Siconos at 100"
-./build/fibrecheck study scale --fibres 100,300,1000 --rules accelerated --reference-fibres 100,300 \
-  --peer-fibres 100 --out "$out/study/scale" -q
+step "scale study: generated tows of 100 to 3000 fibres; the reference up to 1000 on two processes; Siconos at 100"
+./build/fibrecheck study scale --fibres 100,300,1000,3000 --rules accelerated \
+  --reference-fibres 100,300,1000 --peer-fibres 100 --out "$out/study/scale" -q
 step "report"
 ./build/fibrecheck report "$out/compare" "$out/study" --out "$out/report"
 echo

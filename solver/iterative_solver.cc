@@ -152,6 +152,8 @@ class IterativeSolver {
   std::vector<int> members_;               ///< index in candidates_ of each contacts_[i]
   Superposition candidate_superposition_;  ///< attached to candidates_
   std::vector<double> synced_overlap_;     ///< of every candidate at the last revision
+  int revision_interval_ = 20;             ///< iterations between revisions
+  int since_revision_ = 0;
   // Scratch of the revisions.
   std::vector<Eigen::Vector3d> revision_force_, revision_u_a_, revision_u_b_;
   std::vector<int> revision_slot_;
@@ -250,6 +252,8 @@ void IterativeSolver::enter_working_set() {
   members_.resize(candidates_.size());
   for (std::size_t i = 0; i < candidates_.size(); ++i) members_[i] = static_cast<int>(i);
   working_ = true;
+  revision_interval_ = 20;
+  since_revision_ = 0;
   update_working_set();
 }
 
@@ -294,6 +298,10 @@ bool IterativeSolver::update_working_set() {
     if (needed) members.push_back(static_cast<int>(i));
   }
   synced_overlap_.swap(revision_overlap_);
+  // The next revision: twice as far off while none joins (up to 160 iterations), 20 after one did.
+  int newcomers = 0;
+  for (int i : members) newcomers += slot[i] < 0;
+  revision_interval_ = newcomers > 0 ? 20 : std::min(2 * revision_interval_, 160);
   if (members == members_ && contacts_.size() == members.size()) return false;
   // Rebuild: members keep their state and momentum, newcomers start from P = 0.
   std::vector<Contact> working(members.size());
@@ -613,7 +621,10 @@ Result IterativeSolver::run() {
                          working_ ? candidates_.size() : contacts_.size(), seconds_since(start)});
     }
     update_forces();
-    if (working_ && iteration % 20 == 0) update_working_set();
+    if (working_ && ++since_revision_ >= revision_interval_) {
+      since_revision_ = 0;
+      update_working_set();
+    }
     // The working set's rules move the fibres smoothly: their shape is checked against the
     // candidate margin every 50 iterations (a deflection field of every fibre at the grid costs
     // more than an iteration on the working set); the others every 10.
