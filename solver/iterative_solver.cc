@@ -466,17 +466,27 @@ void IterativeSolver::update_forces() {
   // steps the same way on the slip, F' = the point of the disk |F| ≤ μP' nearest to F + c·s
   // (Eq. 4.31). The accelerated rule's restart test (gradient restart: −(d, s)·(r_{k+1} − r_k) > 0)
   // is summed in the same pass.
-  double uphill = 0.0;
-#pragma omp parallel for schedule(static) reduction(+ : uphill) if (n > kParallelContacts)
-  for (Eigen::Index k = 0; k < n; ++k) {
-    const Contact& c = contact[k];
-    const double step = seed ? step_ * c.weight : step_;
-    next[k] = std::max(0.0, c.force + step * c.overlap);
-    if (accelerated) uphill += -c.overlap * (next[k] - iterate_[k]);
-    if (!coulomb) continue;
-    next_friction[k] = onto_coulomb_disk(c.friction + step * c.slip, bound[k]);
-    if (accelerated) uphill += -c.slip.dot(next_friction[k] - friction_iterate_[k]);
+  // The restart test is summed in fixed blocks, added in order: the same decisions on any number
+  // of threads.
+  constexpr Eigen::Index kBlock = 8192;
+  const Eigen::Index blocks = (n + kBlock - 1) / kBlock;
+  std::vector<double> uphill_part(static_cast<std::size_t>(blocks), 0.0);
+#pragma omp parallel for schedule(static) if (n > kParallelContacts)
+  for (Eigen::Index b = 0; b < blocks; ++b) {
+    double part = 0.0;
+    for (Eigen::Index k = b * kBlock; k < std::min(n, (b + 1) * kBlock); ++k) {
+      const Contact& c = contact[k];
+      const double step = seed ? step_ * c.weight : step_;
+      next[k] = std::max(0.0, c.force + step * c.overlap);
+      if (accelerated) part += -c.overlap * (next[k] - iterate_[k]);
+      if (!coulomb) continue;
+      next_friction[k] = onto_coulomb_disk(c.friction + step * c.slip, bound[k]);
+      if (accelerated) part += -c.slip.dot(next_friction[k] - friction_iterate_[k]);
+    }
+    uphill_part[b] = part;
   }
+  double uphill = 0.0;
+  for (double part : uphill_part) uphill += part;
   if (accelerated) {
     // Nesterov momentum on the same projected step, restarted when the step has pointed uphill on
     // kRestartStreak iterations in a row. Single uphill steps come and go as force-free contacts
