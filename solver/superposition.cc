@@ -107,9 +107,11 @@ void Superposition::contact_displacements(const std::vector<Contact>& contacts,
                                           double* exact_energy) const {
   u_a.resize(contacts.size());
   u_b.resize(contacts.size());
-  double energy = 0.0;
+  // Each fibre's energy kept apart and added in fibre order: the same total on any number of
+  // threads.
   const int n_fibres = static_cast<int>(fibres_.size());
-#pragma omp parallel reduction(+ : energy) if (total_slots_ > kParallelContacts)
+  std::vector<double> fibre_energies(exact_energy ? fibres_.size() : 0, 0.0);
+#pragma omp parallel if (total_slots_ > kParallelContacts)
   {
     thread_local std::vector<Eigen::Array2d> p;  // the loads of one fibre, reused between calls
     // Plain pointers, private to the thread: the compiler need not reload them after each store.
@@ -152,10 +154,14 @@ void Superposition::contact_displacements(const std::vector<Contact>& contacts,
       const double integral = uniform_load_deflection_integral(1.0, L, f.EI);
       fibre_energy += 0.5 * (q[0] * (q[0] * integral + unit_q_work[0]) +
                              q[1] * (q[1] * integral + unit_q_work[1]));
-      energy += fibre_energy;
+      if (exact_energy) fibre_energies[i] = fibre_energy;
     }
   }
-  if (exact_energy) *exact_energy = energy;
+  if (exact_energy) {
+    double energy = 0.0;
+    for (double e : fibre_energies) energy += e;
+    *exact_energy = energy;
+  }
 }
 
 void Superposition::fibre_field(int fibre, const std::vector<Eigen::Vector3d>& force_on_a,
@@ -188,9 +194,9 @@ double Superposition::trapezium_energy(const std::vector<Eigen::Vector3d>& force
                                        int intervals) const {
   std::vector<double> s(intervals + 1);
   for (int j = 0; j <= intervals; ++j) s[j] = static_cast<double>(j) / intervals;
-  double energy = 0.0;
   const int n_fibres = static_cast<int>(fibres_.size());
-#pragma omp parallel for schedule(dynamic, 16) reduction(+ : energy) if (n_fibres > 64)
+  std::vector<double> fibre_energies(fibres_.size(), 0.0);  // added in fibre order, below
+#pragma omp parallel for schedule(dynamic, 16) if (n_fibres > 64)
   for (int i = 0; i < n_fibres; ++i) {
     // Only the moments: the deflections (and their cubic sums) are not needed here.
     const auto& list = slots_[i];
@@ -209,8 +215,10 @@ double Superposition::trapezium_energy(const std::vector<Eigen::Vector3d>& force
       const double weight = (j == 0 || j == intervals) ? 0.5 : 1.0;
       sum += weight * m.square().sum();
     }
-    energy += sum * (L / intervals) / (2.0 * fibres_[i].EI);  // Eq. 4.34, trapezium rule
+    fibre_energies[i] = sum * (L / intervals) / (2.0 * fibres_[i].EI);  // Eq. 4.34, trapezium
   }
+  double energy = 0.0;
+  for (double e : fibre_energies) energy += e;
   return energy;
 }
 

@@ -66,7 +66,7 @@ TEST(ConjugateGradientRule, CompactedTowReachesTheAcceleratedRulesEquilibrium) {
     EXPECT_NEAR(cg.contacts[i].total_force, accelerated.contacts[i].total_force, 1e-3 * largest);
 }
 
-// One thread and two give the same iterations and the same forces to the last bit, for rule cg
+// One thread and two give the same iterations, forces and energies to the last bit, for rule cg
 // (its sums are taken in fixed blocks) and for the accelerated rule with its working set, on a
 // tow large enough for every parallel loop over the candidates to split.
 TEST(ConjugateGradientRule, OneThreadAndTwoTakeTheSamePath) {
@@ -86,6 +86,8 @@ TEST(ConjugateGradientRule, OneThreadAndTwoTakeTheSamePath) {
     ASSERT_EQ(one.status, Status::converged) << one.message;
     EXPECT_GT(one.candidates, 8192);
     EXPECT_EQ(one.iterations, two.iterations) << to_string(rule);
+    EXPECT_EQ(one.strain_energy_exact, two.strain_energy_exact) << to_string(rule);
+    EXPECT_EQ(one.strain_energy, two.strain_energy) << to_string(rule);
     ASSERT_EQ(one.contacts.size(), two.contacts.size());
     for (std::size_t i = 0; i < one.contacts.size(); ++i)
       EXPECT_EQ(one.contacts[i].total_force, two.contacts[i].total_force) << to_string(rule);
