@@ -106,6 +106,9 @@ class IterativeSolver {
   bool moved_beyond_margin();
   void estimate_step();
   std::optional<std::string> find_unresolvable() const;
+  /// A fresh candidate list; false, with the status `unresolvable`, when an overlap on it cannot be
+  /// resolved.
+  bool detect_again(Status& status, Criterion& criterion, std::string& message);
   void evaluate();
   void update_forces();
   bool update_tresca_bounds();
@@ -377,6 +380,17 @@ std::optional<std::string> IterativeSolver::find_unresolvable() const {
                                    fibres_, scene_.walls);
 }
 
+bool IterativeSolver::detect_again(Status& status, Criterion& criterion, std::string& message) {
+  detect_contacts();
+  const auto why = find_unresolvable();
+  if (!why) return true;
+  evaluate();
+  status = Status::unresolvable;
+  criterion = Criterion::unresolvable;
+  message = *why;
+  return false;
+}
+
 void IterativeSolver::evaluate() {
   if (!forces_gathered_) gather_forces();
   superposition_.contact_displacements(contacts_, force_on_a_, true, u_a_, u_b_, &exact_energy_);
@@ -642,14 +656,7 @@ Result IterativeSolver::run() {
       // The divergence monitor keeps its best residual across re-detections: a rule that moves
       // the fibres enough to re-detect every few iterations (the seed's friction rule on a
       // compacted 100-fibre tow, residual 0.03 mm) would otherwise never be judged stalled.
-      detect_contacts();
-      if (auto why = find_unresolvable()) {
-        evaluate();
-        status = Status::unresolvable;
-        criterion = Criterion::unresolvable;
-        message = *why;
-        break;
-      }
+      if (!detect_again(status, criterion, message)) break;
     }
   }
   if (status == Status::diverged &&
@@ -720,14 +727,7 @@ void IterativeSolver::run_projected_cg(long& iteration, Status& status, Criterio
     }
     if (residuals_.overlap < tolerance && residuals_.gap_force < tolerance) {
       if (moved_beyond_margin()) {
-        detect_contacts();
-        if (auto why = find_unresolvable()) {
-          evaluate();
-          status = Status::unresolvable;
-          criterion = Criterion::unresolvable;
-          message = *why;
-          return;
-        }
+        if (!detect_again(status, criterion, message)) return;
         continue;
       }
       status = Status::converged;
