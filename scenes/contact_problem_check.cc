@@ -20,6 +20,7 @@ bool friction_matters(const ContactProblem& p, std::size_t j) {
 
 ProblemResidual problem_residual(const ContactProblem& p, const Eigen::VectorXd& r) {
   ProblemResidual residual;
+  if (!r.allFinite()) return {INFINITY, INFINITY, INFINITY};  // a non-finite answer solves nothing
   const Eigen::VectorXd w = p.q - p.W * r;
   for (std::size_t j = 0; j < p.contacts.size(); ++j) {
     const Eigen::Index o = p.offset[j];
@@ -47,6 +48,16 @@ ProblemResidual problem_residual(const ContactProblem& p, const Eigen::VectorXd&
     residual.slip_mm = std::max(residual.slip_mm, (r.segment(o + 1, t) - trial).norm() / rho_t);
   }
   return residual;
+}
+
+double residual_scale(const ContactProblem& p) {
+  const double largest = p.q.size() > 0 ? p.q.cwiseAbs().maxCoeff() : 0.0;
+  return largest > 0.0 ? largest : 1.0;
+}
+
+bool solves(const ContactProblem& p, const ProblemResidual& residual, double relative_tolerance) {
+  const double bound = relative_tolerance * residual_scale(p);
+  return residual.overlap_mm <= bound && residual.slip_mm <= bound && residual.excluded_N == 0.0;
 }
 
 double ProblemAgreement::relative() const {

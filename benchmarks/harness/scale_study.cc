@@ -232,7 +232,11 @@ ScaleStudy run_scale_study(const ScaleStudyOptions& o, const ProgramRunner& run,
           ScalePoint p;
           p.fibres = n, p.slices = o.slices, p.solver = "siconos";
           p.method = a.value("solver", "");
-          p.status = a.value("converged", false) ? "converged" : "max_iterations";
+          // Judged by the answer's own residual (fibrecheck-siconos' "converged"); an answer
+          // Siconos calls solved that does not solve the problem is a wrong answer, not a cap.
+          p.status = a.value("converged", false)              ? "converged"
+                     : a.value("siconos_says_converged", false) ? "diverged"
+                                                               : "max_iterations";
           p.iterations = a.value("iterations", 0L);
           p.time_s = a.value("time_s", 0.0);
           p.process_time_s = r.wall_time_s;

@@ -7,11 +7,14 @@
 // tangential blocks, free overlaps and slips q, μ, and the reference's answer), solves it with
 // Siconos' numerics library — Lemke, projected Gauss–Seidel and Newton for the frictionless LCP;
 // nonsmooth Gauss–Seidel and the Alart–Curnier Newton method for Coulomb friction in 2-D and 3-D —
-// and compares each answer with the reference's where the answer is unique. It is its own small
-// program: Siconos links the sequential MUMPS, the reference the parallel one through PETSc.
+// and compares each answer with the reference's where the answer is unique. Siconos is handed the
+// problem scaled to order one (--unscaled: as exported). An answer counts as converged only when
+// its own residual says it solves the problem (--residual-tolerance), whatever Siconos' return code
+// says; both are reported. It is its own small program: Siconos links the sequential MUMPS, the
+// reference the parallel one through PETSc.
 //
-// Exit codes: 0 every solver reached its tolerance (and agreed, with --agreement), 2 bad input,
-// 3 a solver did not converge or disagreed.
+// Exit codes: 0 every answer solves the problem (and agreed, with --agreement), 2 bad input,
+// 3 an answer does not solve it or disagreed.
 #include <CLI/CLI.hpp>
 #include <cmath>
 #include <iomanip>
@@ -33,17 +36,22 @@ using fibrecheck::PeerAnswer;
 using nlohmann::json;
 
 json answer_json(const ContactProblem& p, const PeerAnswer& a) {
-  const fibrecheck::ProblemResidual residual = fibrecheck::problem_residual(p, a.reaction);
   json j = {
       {"solver", a.solver},
       {"siconos_solver", a.siconos_solver},
       {"dimension", a.dimension},
-      {"converged", a.info == 0},
+      {"scaled", a.scaled},
+      {"converged", a.converged},
       {"info", a.info},
+      {"siconos_says_converged", a.info == 0},
       {"iterations", a.iterations},
       {"error", a.error},
       {"time_s", a.time_s},
-      {"residual", {{"overlap_mm", residual.overlap_mm}, {"slip_mm", residual.slip_mm}}},
+      {"residual",
+       {{"overlap_mm", a.residual.overlap_mm},
+        {"slip_mm", a.residual.slip_mm},
+        {"excluded_N", a.residual.excluded_N},
+        {"relative", a.relative_residual}}},
       {"reaction", std::vector<double>(a.reaction.data(), a.reaction.data() + a.reaction.size())}};
   if (p.reaction.size() == a.reaction.size()) {
     const fibrecheck::ProblemAgreement g = fibrecheck::compare_answers(p, p.reaction, a.reaction);
@@ -66,9 +74,10 @@ int main(int argc, char** argv) {
   CLI::App app{"fibrecheck-siconos: a contact problem of the reference, solved by Siconos"};
   std::string problem_file, out;
   std::vector<std::string> solvers;
-  double tolerance = 1e-12, agreement = 0.0;
-  int max_iterations = 100000, threads = 0;
-  bool quiet = false;
+  fibrecheck::PeerSettings settings;
+  double agreement = 0.0;
+  int threads = 0;
+  bool quiet = false, unscaled = false;
   app.add_option("problem", problem_file, "Problem file (fibrecheck fem --export-contact-problem)")
       ->required();
   app.add_option("--out", out, "Answers (JSON): each solver's reaction, figures and agreement");
@@ -76,10 +85,18 @@ int main(int argc, char** argv) {
                  "Solvers to run (default: every one that takes the problem): lemke, pgs, newton "
                  "for mu = 0; nsgs, newton (and lemke in 2-D) with friction")
       ->delimiter(',');
-  app.add_option("--tolerance", tolerance, "Siconos' relative error to reach (default 1e-12)")
+  app.add_option("--tolerance", settings.tolerance,
+                 "Siconos' own relative error to reach (default 1e-12)")
       ->check(CLI::PositiveNumber);
-  app.add_option("--max-iterations", max_iterations, "Iterations per solver (default 100000)")
+  app.add_option("--max-iterations", settings.max_iterations,
+                 "Iterations per solver (default 100000)")
       ->check(CLI::PositiveNumber);
+  app.add_option("--residual-tolerance", settings.residual_tolerance,
+                 "An answer converged when its residual (overlap and slip left by the natural "
+                 "map, mm) is within this of the largest |q| (default 1e-9)")
+      ->check(CLI::PositiveNumber);
+  app.add_flag("--unscaled", unscaled,
+               "Hand Siconos the problem as exported instead of scaled to order one");
   app.add_option("--agreement", agreement,
                  "Fail (exit 3) unless every answer agrees with the reference's within this, "
                  "relative (forces to the largest normal force, overlaps and slips to the largest "
@@ -94,6 +111,7 @@ int main(int argc, char** argv) {
     return app.exit(e) == 0 ? 0 : 2;
   }
   if (threads > 0) fibrecheck::set_blas_threads(threads);
+  settings.scaled = !unscaled;
   try {
     const ContactProblem p = fibrecheck::read_contact_problem(problem_file);
     if (solvers.empty()) solvers = fibrecheck::applicable_solvers(p);
@@ -114,21 +132,27 @@ int main(int argc, char** argv) {
       std::cout << "problem " << problem_file << ": scene " << p.scene << ", step " << p.step
                 << ", " << p.contacts.size() << " contacts (" << excluded << " excluded), "
                 << p.offset.back() << " unknowns, mu = " << p.mu << ", OpenBLAS threads "
-                << fibrecheck::blas_threads() << "\n";
+                << fibrecheck::blas_threads() << "; " << (settings.scaled ? "scaled" : "unscaled")
+                << ", an answer converges when its residual is within "
+                << settings.residual_tolerance << " of max|q| = "
+                << fibrecheck::residual_scale(p) << " mm\n";
     json answers = json::array();
     bool all_good = true;
     for (const std::string& s : solvers) {
-      const PeerAnswer a = fibrecheck::solve_with_siconos(p, s, tolerance, max_iterations);
+      const PeerAnswer a = fibrecheck::solve_with_siconos(p, s, settings);
       json j = answer_json(p, a);
       const bool agrees = !(agreement > 0.0) || !j.contains("against_reference") ||
                           j["against_reference"]["relative"].get<double>() <= agreement;
-      all_good &= a.info == 0 && agrees;
+      all_good &= a.converged && agrees;
       if (!quiet) {
         std::ostringstream line;
         line << std::setprecision(3) << "  " << std::left << std::setw(7) << s << " "
-             << std::setw(30) << a.siconos_solver << (a.info == 0 ? "converged" : "NOT converged")
-             << ", " << a.iterations << " iterations, error " << a.error << ", " << a.time_s
-             << " s";
+             << std::setw(30) << a.siconos_solver
+             << (a.converged ? "converged" : "NOT converged") << ", residual "
+             << a.residual.overlap_mm << " mm overlap, " << a.residual.slip_mm << " mm slip ("
+             << a.relative_residual << " of max|q|), Siconos info " << a.info
+             << (a.info == 0 ? " (it says converged)" : " (it says not converged)") << ", "
+             << a.iterations << " iterations, error " << a.error << ", " << a.time_s << " s";
         if (j.contains("against_reference"))
           line << "; against the reference " << j["against_reference"]["relative"].get<double>()
                << (agrees ? "" : " (above --agreement)");
@@ -143,6 +167,9 @@ int main(int argc, char** argv) {
                 {"mu", p.mu},
                 {"contacts", p.contacts.size()},
                 {"unknowns", p.offset.back()},
+                {"scaled", settings.scaled},
+                {"residual_tolerance", settings.residual_tolerance},
+                {"residual_scale_mm", fibrecheck::residual_scale(p)},
                 {"blas_threads", fibrecheck::blas_threads()},
                 {"answers", answers}};
       fibrecheck::write_file_atomically(out, j.dump(1) + "\n");

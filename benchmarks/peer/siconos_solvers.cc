@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <stdexcept>
 
 // Siconos numerics: C headers.
@@ -70,8 +71,8 @@ std::vector<std::string> applicable_solvers(const ContactProblem& problem) {
   return names;
 }
 
-PeerAnswer solve_with_siconos(const ContactProblem& p, const std::string& solver, double tolerance,
-                              int max_iterations) {
+PeerAnswer solve_with_siconos(const ContactProblem& p, const std::string& solver,
+                              const PeerSettings& settings) {
   const Choice* choice = find_choice(p, solver);
   if (!choice) {
     std::string known;
@@ -98,21 +99,41 @@ PeerAnswer solve_with_siconos(const ContactProblem& p, const std::string& solver
       target[static_cast<std::size_t>(p.offset[j] + a)] = d * i + a;
     }
   }
-  // Dense, column-major: M = W, q = −q (Siconos' velocity u = M·r + q is the gap and the slip
-  // opened, −w in the problem's terms).
+  // The scaling: every unknown of contact i times scale[i] = 1/√W_nn, and q over q_scale, so that
+  // Siconos sees M = D·W·D with a unit diagonal on the normals and |q| ≤ 1; r = q_scale·D·r̃.
+  std::vector<double> scale(static_cast<std::size_t>(m), 1.0);
+  double q_scale = 1.0;
+  if (settings.scaled) {
+    for (int i = 0; i < m; ++i) {
+      const double W_nn = p.W.coeff(p.offset[kept[static_cast<std::size_t>(i)]],
+                                    p.offset[kept[static_cast<std::size_t>(i)]]);
+      if (W_nn > 0.0) scale[static_cast<std::size_t>(i)] = 1.0 / std::sqrt(W_nn);
+    }
+    double largest = 0.0;
+    for (int i = 0; i < size; ++i) {
+      const Eigen::Index s = source[static_cast<std::size_t>(i)];
+      if (s >= 0) largest = std::max(largest, scale[static_cast<std::size_t>(i / d)] * std::fabs(p.q[s]));
+    }
+    if (largest > 0.0) q_scale = largest;
+  }
+  auto factor = [&](int i) { return scale[static_cast<std::size_t>(i / d)]; };
+  // Dense, column-major: M = D·W·D, q = −D·q/q_scale (Siconos' velocity u = M·r + q is the gap and
+  // the slip opened, −w in the problem's terms).
   NumericsMatrix* M = NM_create(NM_DENSE, size, size);
   std::fill(M->matrix0, M->matrix0 + static_cast<std::size_t>(size) * size, 0.0);
   for (int k = 0; k < p.W.outerSize(); ++k)
     for (Eigen::SparseMatrix<double>::InnerIterator it(p.W, k); it; ++it) {
       const int row = target[static_cast<std::size_t>(it.row())];
       const int col = target[static_cast<std::size_t>(it.col())];
-      if (row >= 0 && col >= 0) M->matrix0[static_cast<std::size_t>(col) * size + row] = it.value();
+      if (row >= 0 && col >= 0)
+        M->matrix0[static_cast<std::size_t>(col) * size + row] =
+            factor(row) * it.value() * factor(col);
     }
   std::vector<double> q(static_cast<std::size_t>(size), 0.0), mu(static_cast<std::size_t>(m), p.mu);
   for (int i = 0; i < size; ++i) {
     const Eigen::Index s = source[static_cast<std::size_t>(i)];
     if (s >= 0) {
-      q[static_cast<std::size_t>(i)] = -p.q[s];
+      q[static_cast<std::size_t>(i)] = -factor(i) * p.q[s] / q_scale;
     } else {
       // A direction nothing couples to: unit compliance of the contact's normal size, no load.
       const int normal = (i / d) * d;
@@ -123,12 +144,13 @@ PeerAnswer solve_with_siconos(const ContactProblem& p, const std::string& solver
   std::vector<double> r(static_cast<std::size_t>(size), 0.0),
       u(static_cast<std::size_t>(size), 0.0);
   SolverOptions* options = solver_options_create(choice->id);
-  options->dparam[SICONOS_DPARAM_TOL] = tolerance;
-  options->iparam[SICONOS_IPARAM_MAX_ITER] = max_iterations;
+  options->dparam[SICONOS_DPARAM_TOL] = settings.tolerance;
+  options->iparam[SICONOS_IPARAM_MAX_ITER] = settings.max_iterations;
   PeerAnswer answer;
   answer.solver = solver;
   answer.siconos_solver = choice->siconos_name;
   answer.dimension = d;
+  answer.scaled = settings.scaled;
   const auto start = std::chrono::steady_clock::now();
   if (d == 1) {
     LinearComplementarityProblem lcp;
@@ -155,8 +177,13 @@ PeerAnswer solve_with_siconos(const ContactProblem& p, const std::string& solver
   answer.reaction = Eigen::VectorXd::Zero(p.offset.back());
   for (int i = 0; i < size; ++i) {
     const Eigen::Index s = source[static_cast<std::size_t>(i)];
-    if (s >= 0) answer.reaction[s] = r[static_cast<std::size_t>(i)];
+    if (s >= 0) answer.reaction[s] = q_scale * factor(i) * r[static_cast<std::size_t>(i)];
   }
+  // Siconos' info says what it believes; the residual of the answer says what it is.
+  answer.residual = problem_residual(p, answer.reaction);
+  answer.relative_residual =
+      std::max(answer.residual.overlap_mm, answer.residual.slip_mm) / residual_scale(p);
+  answer.converged = solves(p, answer.residual, settings.residual_tolerance);
   return answer;
 }
 

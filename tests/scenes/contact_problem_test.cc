@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <fstream>
 
 #include "contact_problem_check.h"
@@ -61,6 +62,18 @@ TEST(ContactProblem, ResidualIsZeroExactlyAtTheSolution) {
   EXPECT_NEAR(sticking.slip_mm, 0.05, 1e-15);
   // A force 0.1 N short leaves an overlap of 0.2 mm.
   EXPECT_NEAR(problem_residual(p, Eigen::Vector2d(0.4, 0.2)).overlap_mm, 0.2, 1e-15);
+}
+
+TEST(ContactProblem, AnAnswerSolvesItOnlyByItsOwnResidual) {
+  const ContactProblem p = one_slipping_contact();
+  EXPECT_EQ(residual_scale(p), 3.0);  // the largest |q|, mm
+  EXPECT_TRUE(solves(p, problem_residual(p, p.reaction), 1e-12));
+  // The sticking answer above leaves 0.05 mm of slip: 1/60 of the scale.
+  const ProblemResidual sticking = problem_residual(p, Eigen::Vector2d(0.5, 0.2));
+  EXPECT_TRUE(solves(p, sticking, 0.02));
+  EXPECT_FALSE(solves(p, sticking, 0.01));
+  // A non-finite answer solves nothing.
+  EXPECT_FALSE(solves(p, problem_residual(p, Eigen::Vector2d(NAN, 0.0)), 1.0));
 }
 
 TEST(ContactProblem, FrictionIsComparedOnlyWhereSomethingCanSlip) {

@@ -249,6 +249,13 @@ TEST_F(Cli, ScaleStudyMeasuresEveryRunAndResumes) {
   int iterative = 0, fem = 0, siconos = 0;
   for (const json& p : study["points"]) {
     SCOPED_TRACE(p.dump());
+    // Lemke's pivoting need not find the answer on every CPU (siconos_cross_check_test.cc): a
+    // failed Lemke run must be shown as failed; every other run converges.
+    if (p["solver"] == "siconos" && p["method"] == "lemke" && p["status"] != "converged") {
+      EXPECT_TRUE(p["status"] == "diverged" || p["status"] == "max_iterations");
+      ++siconos;
+      continue;
+    }
     EXPECT_EQ(p["status"], "converged");
     EXPECT_GT(p["candidates"].get<long>(), 0);
     EXPECT_GT(p["active"].get<long>(), 0);
@@ -276,7 +283,7 @@ TEST_F(Cli, ScaleStudyMeasuresEveryRunAndResumes) {
   // The same pushing contacts in every run of the 7-fibre tow.
   long active = -1;
   for (const json& p : study["points"])
-    if (p["fibres"] == 7) {
+    if (p["fibres"] == 7 && p["status"] == "converged") {
       if (active < 0) active = p["active"].get<long>();
       EXPECT_EQ(p["active"].get<long>(), active) << p.dump();
     }
