@@ -31,7 +31,7 @@
 #include "fibre_mesh.h"
 #include "frictional_contact.h"
 #include "input_error.h"
-#include "load_path.h"
+#include "load_path_solve.h"
 #include "slip_origins.h"
 #include "subset_solve.h"
 #include "unresolvable_overlap.h"

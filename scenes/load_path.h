@@ -1,6 +1,5 @@
 #pragma once
 
-#include <functional>
 #include <vector>
 
 #include "result.h"
@@ -23,13 +22,5 @@ double fibre_volume_fraction(const Scene& scene);
 
 /// One step's entry in a result (DESIGN §5 `steps[]`), from that step's scene and result.
 StepResult step_result(const Scene& stepped, const LoadStep& step, const Result& result);
-
-/// Runs a scene's load path with one solver: each step's scene (scene_at_step) solved by
-/// `solve_step`, which receives the previous step's result (none for the first) to start from.
-/// The returned result is the last step's, with `steps` holding one entry per finished step; a
-/// step that does not converge ends the path with its status, the finished steps kept. Iterations
-/// and wall time add up over the steps. A scene without steps is solved once, as it stands.
-Result solve_load_path(const Scene& scene,
-                       const std::function<Result(const Scene&, const Result*)>& solve_step);
 
 }  // namespace fibrecheck

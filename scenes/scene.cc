@@ -102,36 +102,12 @@ double Scene::overlap_tolerance() const {
   return std::isfinite(smallest) ? 1e-5 * smallest : 1e-7;
 }
 
-const char* to_string(UpdateRule rule) {
-  switch (rule) {
-    case UpdateRule::seed:
-      return "seed";
-    case UpdateRule::automatic:
-      return "auto";
-    case UpdateRule::accelerated:
-      return "accelerated";
-    case UpdateRule::conjugate_gradient:
-      return "cg";
-  }
-  return "?";
-}
-
 const char* to_string(FrictionModel model) {
   return model == FrictionModel::seed ? "seed" : "coulomb";
 }
 
 const char* to_string(LoadKind kind) {
   return kind == LoadKind::point ? "point" : "distributed";
-}
-
-UpdateRule parse_update_rule(const std::string& text, const std::string& file,
-                             const std::string& field) {
-  if (text == "seed") return UpdateRule::seed;
-  if (text == "auto") return UpdateRule::automatic;
-  if (text == "accelerated") return UpdateRule::accelerated;
-  if (text == "cg") return UpdateRule::conjugate_gradient;
-  throw InputError(file, field,
-                   "must be \"seed\", \"auto\", \"accelerated\" or \"cg\", got \"" + text + "\"");
 }
 
 Scene scene_from_json(const json& document, const std::string& source) {
@@ -466,9 +442,11 @@ std::string scene_format_help() {
       << d.contact.parallel_angle_deg
       << "\n"
          "  solver\n"
-         "    rule                        \"seed\" | \"auto\" | \"accelerated\"   default: \""
-      << to_string(d.solver.rule)
-      << "\"\n"
+         "    rule                        the force update, default: \""
+      << to_string(d.solver.rule) << "\"\n";
+  for (const UpdateRuleName& r : update_rules())
+    out << "                                  \"" << r.name << "\": " << r.summary << "\n";
+  out << ""
          "    c                           N/mm, step of P' = P + c*d (rule seed; per slice it is\n"
          "                                c/n, Eq. 4.28)   default: null\n"
          "    overlap_tolerance           t_d, mm   default: null = 1e-5 x smallest radius\n"

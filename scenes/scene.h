@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "expected_outcome.h"
+#include "update_rules.h"
 
 namespace fibrecheck {
 
@@ -54,11 +55,9 @@ struct ContactSettings {
   double parallel_angle_deg = 10.0;
 };
 
-enum class UpdateRule { seed, automatic, accelerated, conjugate_gradient };
-
 /// Force update and stopping (seed §4.3.2, §4.3.6).
 struct SolverSettings {
-  UpdateRule rule = UpdateRule::accelerated;
+  UpdateRule rule = UpdateRule::accelerated;  ///< one of update_rules()
   std::optional<double> c;  ///< step c of P' = P + c·d, N/mm (rule `seed` only)
   /// t_d, mm; default 1e-5 of the smallest fibre radius.
   std::optional<double> overlap_tolerance;
@@ -98,12 +97,8 @@ struct Scene {
   double overlap_tolerance() const;
 };
 
-const char* to_string(UpdateRule rule);
 const char* to_string(LoadKind kind);
 const char* to_string(FrictionModel model);
-/// Parses `seed`, `auto`, `accelerated`; throws InputError naming `field` otherwise.
-UpdateRule parse_update_rule(const std::string& text, const std::string& file,
-                             const std::string& field);
 
 /// Reads and validates a scene file. Throws InputError (file, field, reason) on any bad input.
 Scene read_scene(const std::string& path);

@@ -18,7 +18,7 @@
 #include "fibre.h"
 #include "fibre_stiffness.h"
 #include "friction.h"
-#include "load_path.h"
+#include "load_path_solve.h"
 #include "parallel_work.h"
 #include "projected_cg.h"
 #include "slip_origins.h"

@@ -106,7 +106,7 @@ int run_solve(const SolveArguments& args) {
       std::cout << "  rule " << result.rule << ": c = " << result.c
                 << " N/mm per point contact (slices: c/n under rule seed), stable below about "
                 << result.c_stable_limit << " N/mm (2/lambda_max(W)"
-                << (result.rule == "seed" ? " of D^1/2 W D^1/2, D the slice weights" : "") << ")\n";
+                << (result.rule == to_string(UpdateRule::seed) ? " of D^1/2 W D^1/2, D the slice weights" : "") << ")\n";
       std::istringstream report(brief_report(result));
       for (std::string line; std::getline(report, line);) std::cout << "  " << line << "\n";
       for (const std::string& w : result.warnings) std::cout << "  warning: " << w << "\n";
@@ -133,8 +133,10 @@ CLI::App* add_solve_command(CLI::App& app, SolveArguments& args) {
   solve->add_option("--out-dir", args.out_dir, "Folder for SCENE_NAME.result.json files");
   solve->add_option("--slices", args.slices, "Cross-sections n (overrides contact.slices)")
       ->check(CLI::Range(1, 1000000));
-  solve->add_option("--rule", args.rule, "Force update rule: seed | auto | accelerated | cg")
-      ->check(CLI::IsMember({"seed", "auto", "accelerated", "cg"}));
+  std::string rules;
+  for (const std::string& name : update_rule_names()) rules += (rules.empty() ? "" : " | ") + name;
+  solve->add_option("--rule", args.rule, "Force update rule: " + rules)
+      ->check(CLI::IsMember(update_rule_names()));
   solve->add_option("--c", args.c, "Step c of P' = P + c*d in N/mm (rule seed)")
       ->check(CLI::PositiveNumber);
   solve->add_option("--vtk", args.vtk, "ParaView file (.vtp) of fibres and contact forces");

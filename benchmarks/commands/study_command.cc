@@ -244,7 +244,7 @@ CLI::App* add_study_command(CLI::App& app, StudyArguments& args) {
       ->add_option("--rules", args.rules,
                    "Iterative rules (default auto,accelerated; seed needs --seed-c)")
       ->delimiter(',')
-      ->check(CLI::IsMember({"seed", "auto", "accelerated", "cg"}));
+      ->check(CLI::IsMember(update_rule_names()));
   scale
       ->add_option("--reference-fibres", args.reference_fibres,
                    "Sizes the reference runs at (default 100; none: --reference-fibres 0)")

@@ -82,7 +82,9 @@ void expect_agreement(const Exported& e, double relative, double residual_mm, st
     const bool says_converged = a["converged"].get<bool>();
     all &= says_converged;
     const bool is_robust = std::find(robust.begin(), robust.end(), name) != robust.end();
-    if (is_robust) EXPECT_TRUE(says_converged) << name << " is expected to solve this problem";
+    if (is_robust) {
+      EXPECT_TRUE(says_converged) << name << " is expected to solve this problem";
+    }
     if (!says_converged) {
       EXPECT_GT(std::max(residual.overlap_mm, residual.slip_mm), program_tolerance)
           << "called not converged, yet its answer solves the problem";

@@ -101,8 +101,11 @@ TEST(FibreStiffness, InvertsTheComplianceOfALineContact) {
         product(i, j) = sum;
       }
     EXPECT_LE((product - Eigen::MatrixXd::Identity(m, m)).cwiseAbs().maxCoeff(), 1e-8);
-    for (Eigen::Index k = 0; k < n; ++k)
-      if (!free[k]) EXPECT_EQ(Qs.row(k).cwiseAbs().maxCoeff(), 0.0);
+    for (Eigen::Index k = 0; k < n; ++k) {
+      if (!free[k]) {
+        EXPECT_EQ(Qs.row(k).cwiseAbs().maxCoeff(), 0.0);
+      }
+    }
   }
 }
 
