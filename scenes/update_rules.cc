@@ -6,7 +6,8 @@ namespace fibrecheck {
 
 const std::vector<UpdateRuleName>& update_rules() {
   static const std::vector<UpdateRuleName> rules = {
-      {UpdateRule::seed, "seed", "P' = max(0, P + c*d) with the scene's c (c/n per slice, Eq. 4.28)"},
+      {UpdateRule::seed, "seed",
+       "P' = max(0, P + c*d) with the scene's c (c/n per slice, Eq. 4.28)"},
       {UpdateRule::automatic, "auto", "the seed's update with c = 1/lambda_max(W)"},
       {UpdateRule::accelerated, "accelerated",
        "the same projected step with Nesterov momentum and adaptive restart"},

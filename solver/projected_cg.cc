@@ -81,114 +81,155 @@ double contact_residual(const VectorXd& P, const VectorXd& g) {
   return residual;
 }
 
-ProjectedCgOutcome solve_by_projected_cg(const ContactQuadraticProgramme& problem, VectorXd& P,
-                                         VectorXd& g, double tolerance, long max_products) {
-  ProjectedCgOutcome out;
-  const Index n = P.size();
-  if (n == 0) return out;
-  const double step = problem.largest_eigenvalue > 0.0 ? 1.0 / problem.largest_eigenvalue : 0.0;
-  constexpr double kGamma = 1.0;  // proportioning: β may be as large as the free gradient
-  constexpr int kSettled = 10;    // projected steps without a change of the free set
-  std::vector<unsigned char> free(static_cast<std::size_t>(n));
-  VectorXd phi(n), beta(n), z(n), p(n), Ap(n), d0(n), y(n), g_y(n), next(n), g_next(n);
-  problem.compliance(P, d0);
-  ++out.compliance_products;
-  d0 -= g;
-  auto energy = [&](const VectorXd& force, const VectorXd& gradient) {
-    return 0.5 * (dot(force, gradient) - dot(force, d0));
-  };
-  double f = energy(P, g);
-  // Projected steps with Nesterov's momentum from y (its gradient g_y), restarted whenever the
-  // energy rises; after kSettled of them with the same free set, conjugate gradients on it.
-  y = P;
-  g_y = g;
-  double momentum = 1.0;
-  int settled = 0, since_face = 0;
-  auto restart_momentum = [&]() {
-    y = P;
-    g_y = g;
-    momentum = 1.0;
-  };
+namespace {
+
+/// The state of one solve: forces P and gradient g = W·P − d₀ (updated in place), the workspace,
+/// and Nesterov's momentum of the projected steps (from y, its gradient g_y).
+class ProjectedCg {
+ public:
+  ProjectedCg(const ContactQuadraticProgramme& problem, VectorXd& P, VectorXd& g, double tolerance,
+              long max_products)
+      : problem_(problem), P_(P), g_(g), tolerance_(tolerance), max_products_(max_products) {}
+
+  ProjectedCgOutcome run();
+
+ private:
+  static constexpr double kGamma = 1.0;  ///< proportioning: β may be as large as the free gradient
+  static constexpr int kSettled = 10;    ///< projected steps without a change of the free set
+
+  double energy(const VectorXd& force, const VectorXd& gradient) const {
+    return 0.5 * (dot(force, gradient) - dot(force, d0_));
+  }
+  void restart_momentum() {
+    y_ = P_;
+    g_y_ = g_;
+    momentum_ = 1.0;
+  }
+  void conjugate_gradients_in_face();
+  void projected_step();
+
+  const ContactQuadraticProgramme& problem_;
+  VectorXd& P_;
+  VectorXd& g_;
+  double tolerance_;
+  long max_products_;
+  double step_ = 0.0;
+  double f_ = 0.0;  ///< the energy ½PᵀWP − d₀ᵀP
+  ProjectedCgOutcome out_;
+  std::vector<unsigned char> free_;
+  VectorXd phi_, beta_, z_, p_, Ap_, d0_, y_, g_y_, next_, g_next_;
+  double momentum_ = 1.0;
+  int settled_ = 0, since_face_ = 0;
+};
+
+// Projected steps with Nesterov's momentum, restarted whenever the energy rises; after kSettled of
+// them with the same free set (and while the proportioning test allows), conjugate gradients on it.
+ProjectedCgOutcome ProjectedCg::run() {
+  const Index n = P_.size();
+  if (n == 0) return out_;
+  step_ = problem_.largest_eigenvalue > 0.0 ? 1.0 / problem_.largest_eigenvalue : 0.0;
+  free_.resize(static_cast<std::size_t>(n));
+  for (VectorXd* v : {&phi_, &beta_, &z_, &p_, &Ap_, &d0_, &y_, &g_y_, &next_, &g_next_})
+    v->resize(n);
+  problem_.compliance(P_, d0_);
+  ++out_.compliance_products;
+  d0_ -= g_;
+  f_ = energy(P_, g_);
+  y_ = P_;
+  g_y_ = g_;
   while (true) {
-    const Classification c = classify(P, g, step, free, phi, beta);
-    out.residual = c.residual;
-    if (!std::isfinite(c.residual) || !std::isfinite(f)) {
-      out.finite = false;
+    const Classification c = classify(P_, g_, step_, free_, phi_, beta_);
+    out_.residual = c.residual;
+    if (!std::isfinite(c.residual) || !std::isfinite(f_)) {
+      out_.finite = false;
       break;
     }
-    if (c.residual < tolerance || out.compliance_products >= max_products) break;
-
-    if ((settled >= kSettled || since_face >= kSettled * 5) &&
+    if (c.residual < tolerance_ || out_.compliance_products >= max_products_) break;
+    if ((settled_ >= kSettled || since_face_ >= kSettled * 5) &&
         !(c.beta_squared > kGamma * kGamma * c.reduced_free)) {
-      // Conjugate gradients in the face of the pushing contacts, preconditioned there, until a
-      // force would fall below zero (the step is cut there) or the overlapping contacts held at
-      // zero outweigh the free gradient (Dostál's proportioning test).
-      settled = 0;
-      since_face = 0;
-      double pAp = 0.0;
-      bool first = true;
-      while (out.compliance_products < max_products) {
-        problem.preconditioner(phi, free, z);
-        if (first) {
-          p = z;
-        } else {
-          const double gamma = dot(z, Ap) / pAp;  // conjugate to the last direction
-          p = z - gamma * p;
-          for (Index i = 0; i < n; ++i)
-            if (!free[i]) p[i] = 0.0;
-        }
-        first = false;
-        problem.compliance(p, Ap);
-        ++out.compliance_products;
-        pAp = dot(p, Ap);
-        const double gp = dot(g, p);
-        if (!std::isfinite(pAp) || !std::isfinite(gp) || !(pAp > 0.0)) break;
-        double feasible = std::numeric_limits<double>::infinity();
-        Index blocking = -1;
-        for (Index i = 0; i < n; ++i)
-          if (free[i] && p[i] > 0.0 && P[i] < feasible * p[i]) feasible = P[i] / p[i], blocking = i;
-        const double alpha = gp / pAp;
-        const bool blocked = alpha > feasible;
-        const double taken = blocked ? feasible : alpha;
-        P -= taken * p;
-        g -= taken * Ap;
-        P = P.cwiseMax(0.0);
-        if (blocked) {
-          P[blocking] = 0.0;
-        }
-        f = energy(P, g);
-        // Cut at a bound: the contact leaves the face and the conjugate directions start again
-        // on the smaller face.
-        first = blocked;
-        const Classification inner = classify(P, g, step, free, phi, beta);
-        out.residual = inner.residual;
-        if (!(inner.residual >= tolerance)) break;
-        if (inner.beta_squared > kGamma * kGamma * inner.reduced_free) break;
-      }
+      conjugate_gradients_in_face();
       restart_momentum();
       continue;
     }
-
-    // A projected step from y.
-    next = (y - step * g_y).cwiseMax(0.0);
-    int changes = 0;
-    for (Index i = 0; i < n; ++i) changes += (next[i] > 0.0) != (P[i] > 0.0);
-    problem.compliance(next, g_next);
-    ++out.compliance_products;
-    g_next -= d0;
-    const double f_next = energy(next, g_next);
-    settled = changes == 0 ? settled + 1 : 0;
-    ++since_face;
-    const double following = 0.5 * (1.0 + std::sqrt(1.0 + 4.0 * momentum * momentum));
-    const double beta_k = f_next > f ? 0.0 : (momentum - 1.0) / following;
-    momentum = f_next > f ? 1.0 : following;
-    y = next + beta_k * (next - P);
-    g_y = g_next + beta_k * (g_next - g);
-    P.swap(next);
-    g.swap(g_next);
-    f = f_next;
+    projected_step();
   }
-  return out;
+  return out_;
+}
+
+// Conjugate gradients in the face of the pushing contacts, preconditioned there, until a force
+// would fall below zero (the step is cut there, the contact leaves the face and the directions
+// start again on the smaller face) or the overlapping contacts held at zero outweigh the free
+// gradient (Dostál's proportioning test).
+void ProjectedCg::conjugate_gradients_in_face() {
+  const Index n = P_.size();
+  settled_ = 0;
+  since_face_ = 0;
+  double pAp = 0.0;
+  bool first = true;
+  while (out_.compliance_products < max_products_) {
+    problem_.preconditioner(phi_, free_, z_);
+    if (first) {
+      p_ = z_;
+    } else {
+      const double gamma = dot(z_, Ap_) / pAp;  // conjugate to the last direction
+      p_ = z_ - gamma * p_;
+      for (Index i = 0; i < n; ++i)
+        if (!free_[i]) p_[i] = 0.0;
+    }
+    first = false;
+    problem_.compliance(p_, Ap_);
+    ++out_.compliance_products;
+    pAp = dot(p_, Ap_);
+    const double gp = dot(g_, p_);
+    if (!std::isfinite(pAp) || !std::isfinite(gp) || !(pAp > 0.0)) break;
+    double feasible = std::numeric_limits<double>::infinity();
+    Index blocking = -1;
+    for (Index i = 0; i < n; ++i)
+      if (free_[i] && p_[i] > 0.0 && P_[i] < feasible * p_[i])
+        feasible = P_[i] / p_[i], blocking = i;
+    const double alpha = gp / pAp;
+    const bool blocked = alpha > feasible;
+    const double taken = blocked ? feasible : alpha;
+    P_ -= taken * p_;
+    g_ -= taken * Ap_;
+    P_ = P_.cwiseMax(0.0);
+    if (blocked) P_[blocking] = 0.0;
+    f_ = energy(P_, g_);
+    first = blocked;
+    const Classification inner = classify(P_, g_, step_, free_, phi_, beta_);
+    out_.residual = inner.residual;
+    if (!(inner.residual >= tolerance_)) break;
+    if (inner.beta_squared > kGamma * kGamma * inner.reduced_free) break;
+  }
+}
+
+// A projected step of 1/λmax from y, then the momentum for the next one.
+void ProjectedCg::projected_step() {
+  const Index n = P_.size();
+  next_ = (y_ - step_ * g_y_).cwiseMax(0.0);
+  int changes = 0;
+  for (Index i = 0; i < n; ++i) changes += (next_[i] > 0.0) != (P_[i] > 0.0);
+  problem_.compliance(next_, g_next_);
+  ++out_.compliance_products;
+  g_next_ -= d0_;
+  const double f_next = energy(next_, g_next_);
+  settled_ = changes == 0 ? settled_ + 1 : 0;
+  ++since_face_;
+  const double following = 0.5 * (1.0 + std::sqrt(1.0 + 4.0 * momentum_ * momentum_));
+  const double beta_k = f_next > f_ ? 0.0 : (momentum_ - 1.0) / following;
+  momentum_ = f_next > f_ ? 1.0 : following;
+  y_ = next_ + beta_k * (next_ - P_);
+  g_y_ = g_next_ + beta_k * (g_next_ - g_);
+  P_.swap(next_);
+  g_.swap(g_next_);
+  f_ = f_next;
+}
+
+}  // namespace
+
+ProjectedCgOutcome solve_by_projected_cg(const ContactQuadraticProgramme& problem, VectorXd& P,
+                                         VectorXd& g, double tolerance, long max_products) {
+  return ProjectedCg(problem, P, g, tolerance, max_products).run();
 }
 
 }  // namespace fibrecheck
