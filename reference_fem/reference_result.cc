@@ -1,8 +1,12 @@
 #include "reference_result.h"
 
+#include <deal.II/base/mpi.h>
+
 #include <algorithm>
+#include <chrono>
 #include <sstream>
 
+#include "reference_solver_class.h"
 #include "validity.h"
 
 namespace fibrecheck {
@@ -54,10 +58,8 @@ void add_reference_warnings(Result& r, const std::vector<std::string>& ambiguous
   assess_validity(r, fibres);
   if (scene.contact.friction > 0.0 && scene.contact.friction_model == FrictionModel::seed)
     r.warnings.push_back(
-        "the reference solves Coulomb's law exactly; "
-        "friction_model \"seed\" names the "
-        "iterative solver's approximation of it (Eqs. "
-        "4.29-4.33), which it is compared with");
+        "the reference solves Coulomb's law exactly; friction_model \"seed\" names the "
+        "iterative solver's approximation of it (Eqs. 4.29-4.33), which it is compared with");
   if (r.status == Status::converged && r.max_overlap > tolerance) {
     std::ostringstream out;
     out.precision(3);
@@ -80,6 +82,35 @@ std::string reference_summary(const ReferenceCounts& counts, const dealii::Timer
   for (const auto& [phase, seconds] : timer.get_summary_data(dealii::TimerOutput::total_wall_time))
     summary << " " << phase << " " << seconds;
   return summary.str();
+}
+
+// describe_run: what the result says besides the solution — warnings, outer iterations, the
+// finite elements' figures, the stages, the wall time and the run's cost in its message.
+void ReferenceSolver::describe_run(Result& r, const std::vector<std::string>& ambiguous, int outer,
+                                   std::chrono::steady_clock::time_point start) {
+  add_reference_warnings(r, ambiguous, fibres_, scene_, tolerance_);
+  r.iterations = outer;
+  r.finite_elements->active_set_iterations = active_set_iterations_;
+  r.finite_elements->unknowns = static_cast<long>(
+      dealii::Utilities::MPI::sum(model_ ? model_->unknowns() : std::size_t(0), comm_));
+  r.stages = reference_stages(detector_, options_, mu_ > 0.0, processes_);
+  r.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  ReferenceCounts counts;
+  counts.unknowns = r.finite_elements->unknowns;
+  counts.active_set_passes = active_set_iterations_;
+  counts.friction = mu_ > 0.0;
+  counts.tresca_updates = tresca_updates_;
+  counts.newton_steps = newton_steps_;
+  counts.cg = options_.beam_solver == BeamSolver::cg_amg;
+  counts.cg_iterations = model_ ? model_->cg_iterations() : 0;
+  if (!r.message.empty()) r.message += "; ";
+  r.message += reference_summary(counts, timer_);
+  if (options_.print_timing) {
+    if (processes_ == 1)
+      timer_.print_summary();
+    else
+      timer_.print_wall_time_statistics(comm_);
+  }
 }
 
 }  // namespace fibrecheck
