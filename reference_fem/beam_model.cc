@@ -491,8 +491,8 @@ struct BeamModel::Implementation {
       check(PCSetType(pc, PCLU), "PCSetType");
       check(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS), "PCFactorSetMatSolverType");
       // One step of iterative refinement (ICNTL(10) = -1: always one): the mixed w–M system is
-      // badly scaled, and without it a solve is exact to only ~1e-9 relative, which is then the
-      // floor of every overlap the contact problem can resolve.
+      // badly scaled, and the round-off of a solve is the floor of every overlap the contact
+      // problem can resolve.
       check(PCFactorSetUpMatSolverType(pc), "PCFactorSetUpMatSolverType");
       Mat factor;
       check(PCFactorGetMatrix(pc, &factor), "PCFactorGetMatrix");

@@ -8,6 +8,100 @@
 
 namespace fibrecheck {
 
+namespace {
+
+/// The variables' states and values during one solve: −1 held at lo, +1 held at hi, 0 free.
+class BoundedSet {
+ public:
+  BoundedSet(const Eigen::SparseMatrix<double>& W, const Eigen::VectorXd& q,
+             const Eigen::VectorXd& lo, const Eigen::VectorXd& hi, Eigen::VectorXd& r)
+      : W_(W), q_(q), lo_(lo), hi_(hi), r_(r), state_(q.size(), 0) {
+    for (Eigen::Index i = 0; i < q.size(); ++i)
+      state_[i] = r[i] <= lo[i] ? -1 : (r[i] >= hi[i] ? 1 : 0);
+  }
+
+  /// The free variables' equations W_FF·z_F = q_F − W_FB·r_B solved, the held ones kept: false
+  /// when they cannot be solved.
+  bool free_solve(Eigen::VectorXd& z) const {
+    const Eigen::Index n = q_.size();
+    std::vector<Eigen::Index> index;
+    for (Eigen::Index i = 0; i < n; ++i)
+      if (state_[i] == 0) index.push_back(i);
+    z = r_;
+    const Eigen::Index m = static_cast<Eigen::Index>(index.size());
+    if (m == 0) return true;
+    Eigen::VectorXd held = r_;
+    for (Eigen::Index i : index) held[i] = 0.0;
+    const Eigen::VectorXd load = q_ - W_ * held;
+    Eigen::VectorXd b(m), x;
+    for (Eigen::Index k = 0; k < m; ++k) b[k] = load[index[k]];
+    if (!solve_on_subset(W_, index, b, x)) return false;
+    for (Eigen::Index k = 0; k < m; ++k) z[index[k]] = x[k];
+    return true;
+  }
+
+  /// Solves on the free set, stepping back to the box: the first variable to reach a bound is
+  /// held there, and the free set solved again, until the answer lies in the box.
+  bool settle() {
+    const Eigen::Index n = q_.size();
+    Eigen::VectorXd z;
+    for (Eigen::Index guard = 0; guard <= n; ++guard) {
+      if (!free_solve(z)) return false;
+      double alpha = 1.0;
+      Eigen::Index blocking = -1;
+      for (Eigen::Index i = 0; i < n; ++i) {
+        if (state_[i] != 0 || (z[i] >= lo_[i] && z[i] <= hi_[i])) continue;
+        const double bound = z[i] < lo_[i] ? lo_[i] : hi_[i];
+        const double a = (bound - r_[i]) / (z[i] - r_[i]);
+        if (blocking < 0 || a < alpha) alpha = a, blocking = i;
+      }
+      if (blocking < 0) {
+        r_ = z;
+        return true;
+      }
+      r_ += std::clamp(alpha, 0.0, 1.0) * (z - r_);
+      state_[blocking] = z[blocking] < lo_[blocking] ? -1 : 1;
+      r_[blocking] = state_[blocking] < 0 ? lo_[blocking] : hi_[blocking];
+      r_ = r_.cwiseMax(lo_).cwiseMin(hi_);
+    }
+    return true;
+  }
+
+  double objective() const { return 0.5 * r_.dot(W_ * r_) - q_.dot(r_); }
+
+  /// The held variables whose bound the objective wants to leave (w = q − W·r beyond `tolerance`
+  /// pointing inside), with how far, and how many are free; fixed and set-aside ones stay.
+  std::vector<std::pair<double, Eigen::Index>> leaving(double tolerance,
+                                                       const std::vector<char>& set_aside,
+                                                       std::size_t& free_count) const {
+    const Eigen::VectorXd w = q_ - W_ * r_;
+    std::vector<std::pair<double, Eigen::Index>> out;
+    free_count = 0;
+    for (Eigen::Index i = 0; i < q_.size(); ++i) {
+      if (state_[i] == 0) {
+        ++free_count;
+        continue;
+      }
+      if (lo_[i] >= hi_[i] || set_aside[i]) continue;
+      if (state_[i] < 0 && w[i] > tolerance) out.push_back({w[i], i});
+      if (state_[i] > 0 && w[i] < -tolerance) out.push_back({-w[i], i});
+    }
+    return out;
+  }
+
+  void free(Eigen::Index i) { state_[i] = 0; }
+
+ private:
+  const Eigen::SparseMatrix<double>& W_;
+  const Eigen::VectorXd& q_;
+  const Eigen::VectorXd& lo_;
+  const Eigen::VectorXd& hi_;
+  Eigen::VectorXd& r_;
+  std::vector<signed char> state_;
+};
+
+}  // namespace
+
 BoundedSolve bounded_active_set(const Eigen::SparseMatrix<double>& W, const Eigen::VectorXd& q,
                                 const Eigen::VectorXd& lo, const Eigen::VectorXd& hi,
                                 double tolerance, int max_passes, Eigen::VectorXd& r) {
@@ -15,57 +109,13 @@ BoundedSolve bounded_active_set(const Eigen::SparseMatrix<double>& W, const Eige
   const Eigen::Index n = q.size();
   if (r.size() != n) r = Eigen::VectorXd::Zero(n);
   r = r.cwiseMax(lo).cwiseMin(hi);
-  // −1 held at lo, +1 held at hi, 0 free.
-  std::vector<signed char> state(n, 0);
-  for (Eigen::Index i = 0; i < n; ++i) state[i] = r[i] <= lo[i] ? -1 : (r[i] >= hi[i] ? 1 : 0);
-  auto free_solve = [&](Eigen::VectorXd& z) {
-    std::vector<Eigen::Index> index;
-    for (Eigen::Index i = 0; i < n; ++i)
-      if (state[i] == 0) index.push_back(i);
-    z = r;
-    const Eigen::Index m = static_cast<Eigen::Index>(index.size());
-    if (m == 0) return true;
-    Eigen::VectorXd held = r;
-    for (Eigen::Index i : index) held[i] = 0.0;
-    const Eigen::VectorXd load = q - W * held;
-    Eigen::VectorXd b(m), x;
-    for (Eigen::Index k = 0; k < m; ++k) b[k] = load[index[k]];
-    if (!solve_on_subset(W, index, b, x)) return false;
-    for (Eigen::Index k = 0; k < m; ++k) z[index[k]] = x[k];
-    return true;
-  };
-  // Solve on the free set, stepping back to the box: the first variable to reach a bound is held
-  // there, and the free set solved again.
-  auto settle = [&]() {
-    Eigen::VectorXd z;
-    for (Eigen::Index guard = 0; guard <= n; ++guard) {
-      if (!free_solve(z)) return false;
-      double alpha = 1.0;
-      Eigen::Index blocking = -1;
-      for (Eigen::Index i = 0; i < n; ++i) {
-        if (state[i] != 0 || (z[i] >= lo[i] && z[i] <= hi[i])) continue;
-        const double bound = z[i] < lo[i] ? lo[i] : hi[i];
-        const double a = (bound - r[i]) / (z[i] - r[i]);
-        if (blocking < 0 || a < alpha) alpha = a, blocking = i;
-      }
-      if (blocking < 0) {
-        r = z;
-        return true;
-      }
-      r += std::clamp(alpha, 0.0, 1.0) * (z - r);
-      state[blocking] = z[blocking] < lo[blocking] ? -1 : 1;
-      r[blocking] = state[blocking] < 0 ? lo[blocking] : hi[blocking];
-      r = r.cwiseMax(lo).cwiseMin(hi);
-    }
-    return true;
-  };
-  auto objective = [&]() { return 0.5 * r.dot(W * r) - q.dot(r); };
+  BoundedSet set(W, q, lo, hi, r);
   bool one_at_a_time = false;
   std::vector<char> set_aside(n, 0);
   std::vector<Eigen::Index> added;
   double before = INFINITY;
   for (result.passes = 0; result.passes < max_passes; ++result.passes) {
-    if (!settle()) {
+    if (!set.settle()) {
       if (!one_at_a_time) {
         one_at_a_time = true;
         continue;
@@ -75,7 +125,7 @@ BoundedSolve bounded_active_set(const Eigen::SparseMatrix<double>& W, const Eige
     }
     // A pass that gained nothing (round-off decides it): one variable at a time, and a single one
     // that gains nothing is set aside until something changes.
-    const double now = objective();
+    const double now = set.objective();
     const bool progress = now < before - 1e-14 * std::fabs(before);
     if (progress) {
       std::fill(set_aside.begin(), set_aside.end(), 0);
@@ -85,18 +135,9 @@ BoundedSolve bounded_active_set(const Eigen::SparseMatrix<double>& W, const Eige
       one_at_a_time = true;
     }
     before = std::min(before, now);
-    const Eigen::VectorXd w = q - W * r;
-    std::vector<std::pair<double, Eigen::Index>> leaving;
     std::size_t free_count = 0;
-    for (Eigen::Index i = 0; i < n; ++i) {
-      if (state[i] == 0) {
-        ++free_count;
-        continue;
-      }
-      if (lo[i] >= hi[i] || set_aside[i]) continue;
-      if (state[i] < 0 && w[i] > tolerance) leaving.push_back({w[i], i});
-      if (state[i] > 0 && w[i] < -tolerance) leaving.push_back({-w[i], i});
-    }
+    std::vector<std::pair<double, Eigen::Index>> leaving =
+        set.leaving(tolerance, set_aside, free_count);
     if (leaving.empty()) {
       result.solved = true;
       return result;
@@ -107,7 +148,7 @@ BoundedSolve bounded_active_set(const Eigen::SparseMatrix<double>& W, const Eige
                       [](const auto& a, const auto& b) { return a.first > b.first; });
     added.clear();
     for (std::size_t k = 0; k < add; ++k) {
-      state[leaving[k].second] = 0;
+      set.free(leaving[k].second);
       added.push_back(leaving[k].second);
     }
   }

@@ -21,7 +21,10 @@ struct BoundedSolve {
 /// Each pass lowers the objective, so no set returns and the method ends. `lo[i] = hi[i]` fixes a
 /// variable. `r` holds a start on entry (clamped into the box; the variables strictly inside it
 /// start free) and the answer on return. This is the Tresca problem of friction with one tangent
-/// per contact: P ≥ 0 and |F| ≤ g, a box.
+/// per contact: P ≥ 0 and |F| ≤ g, a box. nonnegative_active_set solves the frictionless problem,
+/// this one's box [0, ∞); the two stay apart because each one's order of passes, block additions
+/// and set-aside rule fix the answers it gives: there every frictionless answer to the last bit,
+/// here the friction answers, which need not be unique.
 BoundedSolve bounded_active_set(const Eigen::SparseMatrix<double>& W, const Eigen::VectorXd& q,
                                 const Eigen::VectorXd& lo, const Eigen::VectorXd& hi,
                                 double tolerance, int max_passes, Eigen::VectorXd& r);

@@ -71,162 +71,204 @@ struct NaturalMap {
   }
 };
 
+/// ‖Φ‖² in mm²: Σ_j ‖Φ_j‖²/ρ_j² over the contacts something moves.
+double merit(const FrictionalProblem& p, const NaturalMap& m) {
+  const std::size_t n = p.offset.size() - 1;
+  double sum = 0.0;
+  for (std::size_t j = 0; j < n; ++j) {
+    if (m.rho[j] == 0.0) continue;
+    const Eigen::Index o = p.offset[j], k = p.offset[j + 1] - o;
+    sum += m.phi.segment(o, k).squaredNorm() / (m.rho[j] * m.rho[j]);
+  }
+  return sum;
+}
+
+/// One Newton system on the closed (sticking and slipping) contacts' components, in order:
+/// J·Δr_C = rhs with J = A + B·W_CC block by block, the open contacts' step Δr_O = −r_O.
+struct NewtonSystem {
+  std::vector<Eigen::Index> closed;    ///< the closed components
+  std::vector<Eigen::Index> position;  ///< per component, its place in `closed` (−1: open)
+  Eigen::VectorXd open_part;           ///< r on the open components, zero on the closed
+  Eigen::MatrixXd Wcc, J;
+  Eigen::VectorXd rhs;
+};
+
+/// The blocks A, B of one closed contact j with k components (see the header for Φ): rows that
+/// read "the w of these components vanishes" are ρ·W rows (B), a tangent nothing moves along
+/// keeps F = 0 (A). Slip: Φ_t = F − g ẑ; dΦ_t = (I − K)dF − μẑ dP + ρμẑ(W dr)_n + ρK(W dr)_t,
+/// K = g/|z_t| (I − ẑẑᵀ), g = μ z_n for Coulomb (moving with the normal part) and the fixed
+/// radius for Tresca.
+void contact_blocks(const FrictionalProblem& p, const NaturalMap& map, const Eigen::VectorXd& r,
+                    std::size_t j, Eigen::MatrixXd& A, Eigen::MatrixXd& B) {
+  const Eigen::Index o = p.offset[j], k = p.offset[j + 1] - o;
+  const double rho = map.rho[j];
+  A = Eigen::MatrixXd::Zero(k, k);
+  B = Eigen::MatrixXd::Zero(k, k);
+  B(0, 0) = rho;
+  if (map.state[j] == State::stick) {
+    for (Eigen::Index i = 1; i < k; ++i) {
+      if (map.frozen[o + i])
+        A(i, i) = 1.0;
+      else
+        B(i, i) = rho;
+    }
+    return;
+  }
+  const double zn = r[o] + rho * map.w[o];
+  Eigen::VectorXd zt = Eigen::VectorXd::Zero(k - 1);
+  for (Eigen::Index i = 1; i < k; ++i)
+    zt[i - 1] = map.frozen[o + i] ? 0.0 : r[o + i] + rho * map.w[o + i];
+  const double size = zt.norm();
+  const Eigen::VectorXd unit = zt / size;
+  const bool tresca = p.bounds.size() > 0;
+  const double radius = tresca ? p.bounds[static_cast<Eigen::Index>(j)] : p.mu * zn;
+  const Eigen::MatrixXd K =
+      (radius / size) * (Eigen::MatrixXd::Identity(k - 1, k - 1) - unit * unit.transpose());
+  A.block(1, 1, k - 1, k - 1) = Eigen::MatrixXd::Identity(k - 1, k - 1) - K;
+  const double coupling = tresca ? 0.0 : p.mu;
+  A.block(1, 0, k - 1, 1) = -coupling * unit;
+  B.block(1, 0, k - 1, 1) = rho * coupling * unit;
+  B.block(1, 1, k - 1, k - 1) = rho * K;
+  for (Eigen::Index i = 1; i < k; ++i)
+    if (map.frozen[o + i]) {
+      A.row(i).setZero();
+      B.row(i).setZero();
+      A(i, i) = 1.0;
+    }
+}
+
+/// The Newton system at r: −Φ_C − J_CO·Δr_O = −Φ_C + B·(W_CO·r_O) on the right.
+NewtonSystem newton_system(const FrictionalProblem& p, const NaturalMap& map,
+                           const Eigen::VectorXd& r) {
+  const std::size_t n = p.offset.size() - 1;
+  NewtonSystem s;
+  s.position.assign(r.size(), -1);
+  for (std::size_t j = 0; j < n; ++j)
+    if (map.state[j] != State::open)
+      for (Eigen::Index i = p.offset[j]; i < p.offset[j + 1]; ++i) {
+        s.position[i] = static_cast<Eigen::Index>(s.closed.size());
+        s.closed.push_back(i);
+      }
+  const Eigen::Index m = static_cast<Eigen::Index>(s.closed.size());
+  s.open_part = r;
+  for (Eigen::Index i : s.closed) s.open_part[i] = 0.0;
+  const Eigen::VectorXd W_open = p.W * s.open_part;
+  s.Wcc = Eigen::MatrixXd::Zero(m, m);
+  for (Eigen::Index col = 0; col < m; ++col)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(p.W, s.closed[col]); it; ++it)
+      if (s.position[it.row()] >= 0) s.Wcc(s.position[it.row()], col) = it.value();
+  s.J = Eigen::MatrixXd::Zero(m, m);
+  s.rhs.resize(m);
+  Eigen::MatrixXd A, B;
+  for (std::size_t j = 0; j < n; ++j) {
+    if (map.state[j] == State::open) continue;
+    const Eigen::Index o = p.offset[j], k = p.offset[j + 1] - o, b = s.position[o];
+    contact_blocks(p, map, r, j, A, B);
+    s.J.block(b, b, k, k) += A;
+    s.J.middleRows(b, k) += B * s.Wcc.middleRows(b, k);
+    s.rhs.segment(b, k) = -map.phi.segment(o, k) + B * W_open.segment(o, k);
+  }
+  return s;
+}
+
+/// The full Newton step (closed components from the system, open ones to zero); false when the
+/// system cannot be solved even regularised. Closed contacts that constrain the same motion make
+/// J singular: it is then regularised by 1e-10 of W's diagonal.
+bool newton_step(const FrictionalProblem& p, const NaturalMap& map, const NewtonSystem& s,
+                 Eigen::VectorXd& step) {
+  const std::size_t n = p.offset.size() - 1;
+  Eigen::PartialPivLU<Eigen::MatrixXd> lu(s.J);
+  Eigen::VectorXd step_c = lu.solve(s.rhs);
+  if (!step_c.allFinite() || (s.J * step_c - s.rhs).norm() > 1e-6 * (s.rhs.norm() + 1e-300)) {
+    Eigen::MatrixXd Jr = s.J;
+    const double epsilon = 1e-10 * s.Wcc.diagonal().cwiseAbs().maxCoeff();
+    for (std::size_t j = 0; j < n; ++j) {
+      if (map.state[j] == State::open) continue;
+      const Eigen::Index o = p.offset[j], b = s.position[o];
+      Jr(b, b) += map.rho[j] * epsilon;
+    }
+    step_c = Eigen::PartialPivLU<Eigen::MatrixXd>(Jr).solve(s.rhs);
+    if (!step_c.allFinite()) return false;
+  }
+  step = -s.open_part;
+  for (Eigen::Index c = 0; c < static_cast<Eigen::Index>(s.closed.size()); ++c)
+    step[s.closed[c]] = step_c[c];
+  return true;
+}
+
+/// The iterate of the Newton method: r, its natural map, ‖Φ‖'s largest part and ‖Φ‖².
+struct Iterate {
+  NaturalMap map;
+  double residual;
+  double merit;
+};
+
+/// Backtracking on ‖Φ‖² along `step`. A whole step that changes the sets (a contact closes or
+/// opens, one starts or stops slipping) is taken, as a primal–dual active-set method would,
+/// within a budget of `nonmonotone` such steps; otherwise the search walks towards the kink and
+/// stalls there. When no fraction lowers ‖Φ‖ — a set change the Newton model cannot see — a small
+/// step (1/1000 of it) lets the sets change without a large one; returns false then.
+bool line_search(const FrictionalProblem& p, double tolerance, const Eigen::VectorXd& step,
+                 int& nonmonotone, Eigen::VectorXd& r, Iterate& at) {
+  double alpha = 1.0;
+  Eigen::VectorXd trial;
+  for (int halving = 0; halving < 30; ++halving, alpha *= 0.5) {
+    trial = r + alpha * step;
+    NaturalMap next = at.map;
+    const double res = next.evaluate(trial);
+    const double value = merit(p, next);
+    const bool set_change =
+        halving == 0 && next.state != at.map.state && value < 10.0 * at.merit && nonmonotone > 0;
+    if (set_change) --nonmonotone;
+    if (value <= (1.0 - 1e-4 * alpha) * at.merit || res <= tolerance || set_change) {
+      r = trial;
+      at.map = std::move(next);
+      at.residual = res;
+      at.merit = value;
+      return true;
+    }
+  }
+  trial = r + 1e-3 * step;
+  NaturalMap next = at.map;
+  at.residual = next.evaluate(trial);
+  r = trial;
+  at.map = std::move(next);
+  at.merit = merit(p, at.map);
+  return false;
+}
+
 }  // namespace
 
 FrictionalSolve solve_frictional(const FrictionalProblem& p, double tolerance, int max_steps,
                                  Eigen::VectorXd& r) {
   FrictionalSolve result;
-  const std::size_t n = p.offset.size() - 1;
-  NaturalMap map(p);
-  double residual = map.evaluate(r);
-  auto merit = [&](const NaturalMap& m) {
-    double sum = 0.0;
-    for (std::size_t j = 0; j < n; ++j) {
-      if (m.rho[j] == 0.0) continue;
-      const Eigen::Index o = p.offset[j], k = p.offset[j + 1] - o;
-      sum += m.phi.segment(o, k).squaredNorm() / (m.rho[j] * m.rho[j]);
-    }
-    return sum;
-  };
-  double current = merit(map);
+  Iterate at{NaturalMap(p), 0.0, 0.0};
+  at.residual = at.map.evaluate(r);
+  at.merit = merit(p, at.map);
   Eigen::VectorXd best = r;
-  double best_merit = current, best_residual = residual;
+  double best_merit = at.merit, best_residual = at.residual;
   int nonmonotone = 20;
   for (result.newton_steps = 0; result.newton_steps < max_steps; ++result.newton_steps) {
-    if (residual <= tolerance) break;
-    // The closed contacts' components, in order.
-    std::vector<Eigen::Index> closed, position(r.size(), -1);
-    for (std::size_t j = 0; j < n; ++j)
-      if (map.state[j] != State::open)
-        for (Eigen::Index i = p.offset[j]; i < p.offset[j + 1]; ++i) {
-          position[i] = static_cast<Eigen::Index>(closed.size());
-          closed.push_back(i);
-        }
-    const Eigen::Index m = static_cast<Eigen::Index>(closed.size());
-    // Open contacts go to zero: Δr_O = −r_O; its effect on the closed rows is −W_CO·r_O.
-    Eigen::VectorXd open_part = r;
-    for (Eigen::Index i : closed) open_part[i] = 0.0;
-    const Eigen::VectorXd W_open = p.W * open_part;
-    Eigen::MatrixXd Wcc = Eigen::MatrixXd::Zero(m, m);
-    for (Eigen::Index col = 0; col < m; ++col)
-      for (Eigen::SparseMatrix<double>::InnerIterator it(p.W, closed[col]); it; ++it)
-        if (position[it.row()] >= 0) Wcc(position[it.row()], col) = it.value();
-    // J = A + B·W on the closed blocks, block by block (see the header for Φ).
-    Eigen::MatrixXd J = Eigen::MatrixXd::Zero(m, m);
-    Eigen::VectorXd rhs(m);
-    for (std::size_t j = 0; j < n; ++j) {
-      if (map.state[j] == State::open) continue;
-      const Eigen::Index o = p.offset[j], k = p.offset[j + 1] - o, b = position[o];
-      const double rho = map.rho[j];
-      // Rows that read "the w of these components vanishes": ρ·W rows.
-      Eigen::MatrixXd A = Eigen::MatrixXd::Zero(k, k), B = Eigen::MatrixXd::Zero(k, k);
-      B(0, 0) = rho;
-      if (map.state[j] == State::stick) {
-        for (Eigen::Index i = 1; i < k; ++i) {
-          if (map.frozen[o + i])
-            A(i, i) = 1.0;
-          else
-            B(i, i) = rho;
-        }
-      } else {
-        // Slip: Φ_t = F − μ z_n ẑ; dΦ_t = (I − K)dF − μẑ dP + ρμẑ(W dr)_n + ρK(W dr)_t,
-        // K = μ z_n/|z_t| (I − ẑẑᵀ).
-        const double zn = r[o] + rho * map.w[o];
-        Eigen::VectorXd zt = Eigen::VectorXd::Zero(k - 1);
-        for (Eigen::Index i = 1; i < k; ++i)
-          zt[i - 1] = map.frozen[o + i] ? 0.0 : r[o + i] + rho * map.w[o + i];
-        const double size = zt.norm();
-        const Eigen::VectorXd unit = zt / size;
-        const bool tresca = p.bounds.size() > 0;
-        const double radius = tresca ? p.bounds[static_cast<Eigen::Index>(j)] : p.mu * zn;
-        const Eigen::MatrixXd K =
-            (radius / size) * (Eigen::MatrixXd::Identity(k - 1, k - 1) - unit * unit.transpose());
-        A.block(1, 1, k - 1, k - 1) = Eigen::MatrixXd::Identity(k - 1, k - 1) - K;
-        // Coulomb's radius μ·z_n moves with the normal part; Tresca's is fixed.
-        const double coupling = tresca ? 0.0 : p.mu;
-        A.block(1, 0, k - 1, 1) = -coupling * unit;
-        B.block(1, 0, k - 1, 1) = rho * coupling * unit;
-        B.block(1, 1, k - 1, k - 1) = rho * K;
-        for (Eigen::Index i = 1; i < k; ++i)
-          if (map.frozen[o + i]) {
-            A.row(i).setZero();
-            B.row(i).setZero();
-            A(i, i) = 1.0;
-          }
-      }
-      J.block(b, b, k, k) += A;
-      J.middleRows(b, k) += B * Wcc.middleRows(b, k);
-      // −Φ_C − J_CO·Δr_O = −Φ_C + B·(W_CO·r_O).
-      rhs.segment(b, k) = -map.phi.segment(o, k) + B * W_open.segment(o, k);
+    if (at.residual <= tolerance) break;
+    Eigen::VectorXd step;
+    if (!newton_step(p, at.map, newton_system(p, at.map, r), step)) {
+      result.singular = true;
+      break;
     }
-    Eigen::PartialPivLU<Eigen::MatrixXd> lu(J);
-    Eigen::VectorXd step_c = lu.solve(rhs);
-    if (!step_c.allFinite() || (J * step_c - rhs).norm() > 1e-6 * (rhs.norm() + 1e-300)) {
-      // Closed contacts that constrain the same motion: regularise by 1e-10 of W's diagonal.
-      Eigen::MatrixXd Jr = J;
-      const double epsilon = 1e-10 * Wcc.diagonal().cwiseAbs().maxCoeff();
-      for (std::size_t j = 0; j < n; ++j) {
-        if (map.state[j] == State::open) continue;
-        const Eigen::Index o = p.offset[j], b = position[o];
-        Jr(b, b) += map.rho[j] * epsilon;
-      }
-      step_c = Eigen::PartialPivLU<Eigen::MatrixXd>(Jr).solve(rhs);
-      if (!step_c.allFinite()) {
-        result.singular = true;
-        break;
-      }
-    }
-    Eigen::VectorXd step = -open_part;
-    for (Eigen::Index c = 0; c < m; ++c) step[closed[c]] = step_c[c];
-    // Backtracking on ‖Φ‖²; if no fraction lowers it, the full step is taken anyway (the map is
-    // only piecewise smooth and a set change may need to pass a ridge).
-    double alpha = 1.0;
-    Eigen::VectorXd trial;
-    bool accepted = false;
-    for (int halving = 0; halving < 30; ++halving, alpha *= 0.5) {
-      trial = r + alpha * step;
-      NaturalMap next = map;
-      const double res = next.evaluate(trial);
-      const double value = merit(next);
-      // The whole step changes the sets (a contact closes or opens, one starts or stops
-      // slipping): taken, as a primal–dual active-set method would, within a budget of
-      // non-monotone steps; otherwise the search walks towards the kink and stalls there.
-      const bool set_change =
-          halving == 0 && next.state != map.state && value < 10.0 * current && nonmonotone > 0;
-      if (set_change) --nonmonotone;
-      if (value <= (1.0 - 1e-4 * alpha) * current || res <= tolerance || set_change) {
-        r = trial;
-        map = std::move(next);
-        residual = res;
-        current = value;
-        accepted = true;
-        break;
-      }
-    }
-    if (!accepted) {
-      // No fraction of the step lowers ‖Φ‖: a set change the Newton model cannot see. Take a
-      // small step (1/1000 of it) so that the sets may change, but never a large one.
-      trial = r + 1e-3 * step;
-      NaturalMap next = map;
-      residual = next.evaluate(trial);
-      r = trial;
-      map = std::move(next);
-      current = merit(map);
-      ++result.stalled_steps;
-    }
-    if (current < best_merit) {
-      best_merit = current;
+    if (!line_search(p, tolerance, step, nonmonotone, r, at)) ++result.stalled_steps;
+    if (at.merit < best_merit) {
+      best_merit = at.merit;
       best = r;
-      best_residual = residual;
+      best_residual = at.residual;
     }
   }
-  if (residual > tolerance && best.size() == r.size()) {
-    // Not settled: return the best state seen, never a wild last one.
+  // Not settled: the best state seen, never a wild last one.
+  if (at.residual > tolerance && best.size() == r.size()) {
     r = best;
-    residual = best_residual;
+    at.residual = best_residual;
   }
-  result.residual = residual;
-  result.settled = residual <= tolerance;
+  result.residual = at.residual;
+  result.settled = at.residual <= tolerance;
   return result;
 }
 

@@ -1,0 +1,164 @@
+// assemble_system: the contact problem of the current candidates from finite-element solutions.
+
+#include <Eigen/Sparse>
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <string>
+
+#include "process_sums.h"
+#include "reference_solver_class.h"
+
+namespace fibrecheck {
+
+// assemble_system: the overlaps d0 under the scene's loads and the compliance matrix W (and with
+// friction its tangential blocks), from finite-element solutions.
+void ReferenceSolver::assemble_system() {
+  dealii::TimerOutput::Scope scope(timer_, "assemble_system");
+  const std::vector<double> G = loads_and_influence();
+  const std::vector<std::vector<ContactSide>> sides = assemble_compliance(G);
+  if (mu_ > 0.0) assemble_frictional_problem(G, sides);
+}
+
+// The displacements u0_ at every station under the scene's loads, and the influence matrices G_f
+// (mm/N, the same in both bending planes; packed by g_offset_), which the function returns. The
+// fibres do not interact through the beams, so one solve can carry a unit load on every fibre at
+// once: solve i loads the i-th station of each fibre and gives the i-th column of every G_f. Each
+// process fills in its own fibres; the sums give every process all of them, so that every process
+// takes the same branch after a non-finite solution.
+std::vector<double> ReferenceSolver::loads_and_influence() {
+  u0_.assign(3 * offset_.back(), 0.0);
+  std::vector<double> G(g_offset_.back(), 0.0);
+  if (model_) {
+    model_->run({}, true);
+    for (std::size_t f = 0; f < fibres_.size(); ++f)
+      if (owned_[f]) {
+        for (std::size_t i = 0; i < stations_[f].size(); ++i) {
+          const Eigen::Vector3d u = model_->displacement(static_cast<int>(f), stations_[f][i]);
+          for (int d = 0; d < 3; ++d) u0_[3 * (offset_[f] + i) + d] = u[d];
+        }
+      }
+    // Long assemblies (fine continuous line contact) report how far they are, every 5 s.
+    auto last = std::chrono::steady_clock::now();
+    const auto report = [&](std::size_t done, std::size_t total) {
+      if (!options_.progress || done == total ||
+          std::chrono::steady_clock::now() - last < std::chrono::seconds(5))
+        return;
+      last = std::chrono::steady_clock::now();
+      options_.progress("assemble_system: " + std::to_string(done) + " of " +
+                        std::to_string(total) + " unit-load right-hand sides");
+    };
+    const std::vector<Eigen::MatrixXd> influence = model_->influence_matrices(stations_, report);
+    for (std::size_t f = 0; f < fibres_.size(); ++f) {
+      const std::size_t m = stations_[f].size();
+      if (!owned_[f]) continue;
+      for (std::size_t j = 0; j < m; ++j)
+        for (std::size_t i = 0; i < m; ++i) G[g_offset_[f] + j * m + i] = influence[f](j, i);
+    }
+  }
+  sum_over_processes(u0_, comm_);
+  sum_over_processes(G, comm_);
+  if (!std::all_of(u0_.begin(), u0_.end(), [](double x) { return std::isfinite(x); }) ||
+      !std::all_of(G.begin(), G.end(), [](double x) { return std::isfinite(x); }))
+    trouble_.non_finite = true;
+  return G;
+}
+
+// The overlaps d0_ under the scene's loads and W_jk = Σ_f α_j α_k G_f(j, k) n_j⊥·n_k⊥ over the
+// fibres both contacts act on, ⊥ the part across the fibre (mm/N). Returns each fibre's contact
+// sides, from which the frictional blocks are assembled alike.
+std::vector<std::vector<ReferenceSolver::ContactSide>> ReferenceSolver::assemble_compliance(
+    const std::vector<double>& G) {
+  const Eigen::Index n = static_cast<Eigen::Index>(contacts_.size());
+  d0_.resize(n);
+  std::vector<std::vector<ContactSide>> sides(fibres_.size());
+  for (Eigen::Index k = 0; k < n; ++k) {
+    const Contact& c = contacts_[k];
+    const bool wall = c.kind == ContactKind::wall;
+    d0_[k] = detector_.geometry().overlap_along_normal(
+        c, packed(u0_, c.a, station_a_[k]),
+        wall ? Eigen::Vector3d::Zero().eval() : packed(u0_, c.b, station_b_[k]));
+    sides[c.a].push_back({k, station_a_[k], wall ? 1.0 : -1.0, true});
+    if (!wall) sides[c.b].push_back({k, station_b_[k], 1.0, false});
+  }
+  std::vector<Eigen::Triplet<double>> entries;
+  std::size_t count = 0;
+  for (const auto& list : sides) count += list.size() * list.size();
+  entries.reserve(count);
+  for (std::size_t f = 0; f < fibres_.size(); ++f) {
+    const std::size_t m = stations_[f].size();
+    const Eigen::Vector3d t = fibres_[f].t;
+    for (const ContactSide& j : sides[f]) {
+      const Eigen::Vector3d nj = contacts_[j.contact].normal;
+      const Eigen::Vector3d nj_across = nj - nj.dot(t) * t;
+      for (const ContactSide& k : sides[f]) {
+        const Eigen::Vector3d nk = contacts_[k.contact].normal;
+        entries.emplace_back(j.contact, k.contact,
+                             j.alpha * k.alpha * G[g_offset_[f] + j.station * m + k.station] *
+                                 nj_across.dot(nk - nk.dot(t) * t));
+      }
+    }
+  }
+  W_.resize(n, n);
+  W_.setFromTriplets(entries.begin(), entries.end());  // sums the two fibres' parts
+  return sides;
+}
+
+// The direction φ along which component i of contact k's reaction acts on one of its sides (the
+// force on that fibre per unit reaction): the normal −n on A and +n on B (+n on a walled fibre),
+// a tangent +t on A and −t on B (the second tangent n × t).
+Eigen::Vector3d ReferenceSolver::reaction_direction(Eigen::Index k, int i, bool on_a) const {
+  const Contact& c = contacts_[k];
+  if (i == 0) return (c.kind == ContactKind::wall || !on_a) ? c.normal : Eigen::Vector3d(-c.normal);
+  const Eigen::Vector3d t = i == 1 ? c.tangent : Eigen::Vector3d(c.normal.cross(c.tangent));
+  return on_a ? t : Eigen::Vector3d(-t);
+}
+
+// Friction: W with the tangential blocks, W_(j,a)(k,b) = Σ_f G_f(j, k) φ⊥_ja·φ⊥_kb, and q the
+// overlaps d0 and the slips under the scene's loads alone (measured from the step's start).
+void ReferenceSolver::assemble_frictional_problem(
+    const std::vector<double>& G, const std::vector<std::vector<ContactSide>>& sides) {
+  const Eigen::Index n = static_cast<Eigen::Index>(contacts_.size());
+  FrictionalProblem& problem = friction_problem_;
+  problem.mu = mu_;
+  problem.offset.assign(n + 1, 0);
+  for (Eigen::Index k = 0; k < n; ++k)
+    problem.offset[k + 1] = problem.offset[k] + 1 + contacts_[k].tangents;
+  const Eigen::Index unknowns = problem.offset[n];
+  problem.q.resize(unknowns);
+  for (Eigen::Index k = 0; k < n; ++k) {
+    const Contact& c = contacts_[k];
+    const bool wall = c.kind == ContactKind::wall;
+    const Eigen::Vector3d slip =
+        c.relative(packed(u0_, c.a, station_a_[k]),
+                   wall ? Eigen::Vector3d::Zero().eval() : packed(u0_, c.b, station_b_[k])) -
+        c.origin;
+    problem.q[problem.offset[k]] = d0_[k];
+    for (int i = 1; i <= c.tangents; ++i)
+      problem.q[problem.offset[k] + i] = reaction_direction(k, i, true).dot(slip);
+  }
+  std::size_t count = 0;
+  for (const auto& list : sides) count += list.size() * list.size();
+  std::vector<Eigen::Triplet<double>> frictional;
+  frictional.reserve(4 * count);
+  for (std::size_t f = 0; f < fibres_.size(); ++f) {
+    const std::size_t m = stations_[f].size();
+    const Eigen::Vector3d t = fibres_[f].t;
+    auto across = [&](const Eigen::Vector3d& v) { return Eigen::Vector3d(v - v.dot(t) * t); };
+    for (const ContactSide& j : sides[f])
+      for (int a = 0; a <= contacts_[j.contact].tangents; ++a) {
+        const Eigen::Vector3d pj = across(reaction_direction(j.contact, a, j.on_a));
+        for (const ContactSide& k : sides[f]) {
+          const double g = G[g_offset_[f] + j.station * m + k.station];
+          for (int b = 0; b <= contacts_[k.contact].tangents; ++b)
+            frictional.emplace_back(problem.offset[j.contact] + a, problem.offset[k.contact] + b,
+                                    g * pj.dot(across(reaction_direction(k.contact, b, k.on_a))));
+        }
+      }
+  }
+  problem.W.resize(unknowns, unknowns);
+  problem.W.setFromTriplets(frictional.begin(), frictional.end());
+  problem.excluded.assign(n, 0);
+}
+
+}  // namespace fibrecheck

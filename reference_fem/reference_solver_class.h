@@ -1,0 +1,158 @@
+#pragma once
+
+// The reference solver's class, shared by the files that define its phases (reference_solver.cc,
+// reference_assembly.cc, reference_output.cc, reference_result.cc); not part of the reference's
+// interface (reference_solver.h).
+
+#include <deal.II/base/conditional_ostream.h>
+#include <deal.II/base/timer.h>
+#include <mpi.h>
+
+#include <Eigen/Core>
+#include <Eigen/SparseCore>
+#include <chrono>
+#include <cstddef>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "beam_model.h"
+#include "contact.h"
+#include "contact_detection.h"
+#include "contact_problem.h"
+#include "fibre.h"
+#include "fibre_mesh.h"
+#include "frictional_contact.h"
+#include "reference_result.h"
+#include "reference_solver.h"
+#include "result.h"
+#include "scene.h"
+#include "slip_origins.h"
+
+namespace fibrecheck {
+
+/// One load step of the implicit reference (DESIGN §3), in the manner of deal.II's step-41: `run()`
+/// meshes the fibres with a node at every contact candidate, assembles the contact problem from
+/// finite-element solutions, solves it exactly, and re-detects the candidates on the deformed
+/// finite-element fibres, until they no longer change. The fibres are shared out among the
+/// processes of `options.communicator`; every process ends with the same result.
+class ReferenceSolver {
+ public:
+  ReferenceSolver(const Scene& scene, const ReferenceOptions& options);
+  ~ReferenceSolver();
+  Result run();
+  /// The mesh of the first outer iteration: the candidates on the fibres under the scene's loads.
+  MeshOptions first_mesh_options();
+  /// Friction: where this step's slip is measured from (the previous step's end).
+  void start_from(SlipOrigins origins) { origins_ = std::move(origins); }
+  /// After `run`: where the next step's slip is measured from.
+  const SlipOrigins& end_state() const { return end_state_; }
+
+ private:
+  /// One side of a contact on a fibre: the contact, its station on that fibre, and the sign α of a
+  /// unit normal force on it (−1 on fibre A, +1 on fibre B or a fibre against a wall).
+  struct ContactSide {
+    Eigen::Index contact;
+    int station;
+    double alpha;
+    bool on_a;
+  };
+  /// The finite-element fields of the final state (mm and N·mm), every fibre's on every process.
+  struct FinalFields {
+    std::vector<double> stations;      ///< displacement at each contact station, packed
+    std::vector<double> displacement;  ///< at each fibre's samples, 3 per sample
+    std::vector<double> moment;        ///< bending moments at each fibre's samples, 2 per sample
+  };
+
+  // The phases of run(), in order (reference_solver.cc, reference_assembly.cc,
+  // reference_output.cc, reference_result.cc).
+  void deform_under_scene_loads();
+  void detect();
+  void make_grid();
+  void setup_system();
+  void assemble_system();
+  void solve();
+  bool update_active_set();
+  void report_progress(int outer) const;
+  void output_results(Result& r);
+  void hand_over_contact_problem(Status status);
+  void describe_run(Result& r, const std::vector<std::string>& ambiguous, int outer,
+                    std::chrono::steady_clock::time_point start);
+
+  // Meshing and detection (reference_solver.cc).
+  void collect_stations();
+  MeshOptions mesh_options() const;
+  void deform();
+  void displacements_at_contacts(std::vector<Eigen::Vector3d>& u_a,
+                                 std::vector<Eigen::Vector3d>& u_b) const;
+  std::vector<NodalForce> nodal_forces() const;
+  /// The force each contact's fibre A receives, from the contacts' forces.
+  void gather_forces() {
+    force_on_a_.resize(contacts_.size());
+    for (std::size_t k = 0; k < contacts_.size(); ++k) force_on_a_[k] = contacts_[k].force_on_a();
+  }
+  int station(int fibre, double s) const;
+  Eigen::Vector3d packed(const std::vector<double>& u, int fibre, int station) const {
+    const double* v = &u[3 * (offset_[fibre] + station)];
+    return {v[0], v[1], v[2]};
+  }
+
+  // The contact problem (reference_assembly.cc, reference_solver.cc).
+  std::vector<double> loads_and_influence();
+  std::vector<std::vector<ContactSide>> assemble_compliance(const std::vector<double>& G);
+  void assemble_frictional_problem(const std::vector<double>& G,
+                                   const std::vector<std::vector<ContactSide>>& sides);
+  Eigen::Vector3d reaction_direction(Eigen::Index k, int i, bool on_a) const;
+  bool solve_frictionless(const std::vector<char>& excluded);
+  void solve_friction(const std::vector<char>& excluded);
+  /// The problem just solved, with its answer, for options_.contact_problem.
+  void keep_contact_problem(const std::vector<char>& excluded);
+
+  // The final state (reference_output.cc).
+  FinalFields final_fields();
+  void write_vtu() const;
+  void measure_contacts(const std::vector<double>& u, Result& r, std::vector<Eigen::Vector3d>& u_a,
+                        std::vector<Eigen::Vector3d>& u_b);
+  void add_energies(Result& r);
+
+  const Scene& scene_;
+  ReferenceOptions options_;
+  MPI_Comm comm_;
+  unsigned int rank_ = 0, processes_ = 1;
+  dealii::ConditionalOStream pcout_;
+  dealii::TimerOutput timer_;
+  std::vector<Fibre> fibres_;
+  std::vector<char> owned_;  ///< fibres this process meshes and solves
+  double tolerance_;
+  double threshold_ = 0.0;  ///< overlaps the active set resolves: far below the tolerance
+  ContactDetector detector_;
+  /// Each fibre's finite-element displacements (mm) at the detector's grid, for detection.
+  std::vector<std::vector<Eigen::Vector3d>> grid_u_;
+  std::vector<double> sample_s_;
+
+  std::vector<Contact> contacts_;
+  std::vector<Eigen::Vector3d> force_on_a_;
+  /// Per fibre, the sorted fractions where contacts act on it; per contact, its stations on A, B.
+  std::vector<std::vector<double>> stations_;
+  std::vector<int> station_a_, station_b_;
+  std::vector<std::size_t> offset_, g_offset_;  ///< per fibre, into packed station data and G
+  std::string mesh_file_;
+  std::unique_ptr<BeamModel> model_;
+  std::vector<double> u0_;  ///< displacements at every station under the scene's loads
+  Eigen::VectorXd d0_, P_;
+  /// W is sparse: two contacts interact only through a fibre they share.
+  Eigen::SparseMatrix<double> W_;
+  std::vector<char> pushing_;
+  long active_set_iterations_ = 0;
+  ReferenceTrouble trouble_;  ///< why the problem could not be solved, if it could not
+
+  double mu_;
+  SlipOrigins origins_, end_state_;
+  /// The frictional problem of the candidates (μ > 0): W with the tangential blocks and q.
+  FrictionalProblem friction_problem_;
+  ContactProblem exported_;  ///< the problem last solved (only with options_.contact_problem)
+  long newton_steps_ = 0;
+  long tresca_updates_ = 0;
+};
+
+}  // namespace fibrecheck

@@ -1,0 +1,166 @@
+#include "tresca_fixed_point.h"
+
+#include <Eigen/SparseCore>
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <vector>
+
+#include "bounded_active_set.h"
+
+namespace fibrecheck {
+
+namespace {
+
+/// Where the fixed point has settled (mm of slip): the round-off of the normal forces (the
+/// threshold, far below the slips the loads cause), 1e-9 of the largest slip under the loads, or
+/// 1e-3 of the scene's tolerance (the fixed point converges linearly, slowly where it is relaxed).
+double settled_slip(const FrictionalProblem& problem, const TrescaOptions& options) {
+  const Eigen::Index n = static_cast<Eigen::Index>(problem.offset.size()) - 1;
+  double slip_scale = 0.0;
+  for (Eigen::Index k = 0; k < n; ++k)
+    for (Eigen::Index i = problem.offset[k] + 1; i < problem.offset[k + 1]; ++i)
+      slip_scale = std::max(slip_scale, std::fabs(problem.q[i]));
+  return std::max({options.threshold, 1e-9 * slip_scale, 1e-3 * options.tolerance});
+}
+
+/// Each contact's tangential compliance (mm/N, the slip per unit of friction: the largest
+/// diagonal entry of its tangents), and whether anything moves along its tangents.
+void tangential_compliances(const FrictionalProblem& problem, std::vector<double>& compliance,
+                            std::vector<char>& movable) {
+  const Eigen::Index n = static_cast<Eigen::Index>(problem.offset.size()) - 1;
+  compliance.assign(n, 0.0);
+  movable.assign(n, 0);
+  for (Eigen::Index k = 0; k < n; ++k) {
+    const Eigen::Index o = problem.offset[k];
+    for (Eigen::Index i = o + 1; i < problem.offset[k + 1]; ++i)
+      compliance[k] = std::max(compliance[k], problem.W.coeff(i, i));
+    movable[k] = !problem.excluded[k] && compliance[k] > 1e-12 * problem.W.coeff(o, o);
+  }
+}
+
+/// The Tresca problem of one tangent per contact as a box: 0 ≤ P (P = 0 where excluded), and
+/// −g ≤ F ≤ g along a tangent something moves along (F = 0 along the others).
+void tresca_box(const FrictionalProblem& problem, const std::vector<char>& movable,
+                Eigen::VectorXd& lo, Eigen::VectorXd& hi) {
+  const Eigen::Index n = static_cast<Eigen::Index>(problem.offset.size()) - 1;
+  lo = Eigen::VectorXd::Zero(problem.q.size());
+  hi = Eigen::VectorXd::Constant(problem.q.size(), INFINITY);
+  for (Eigen::Index k = 0; k < n; ++k) {
+    const Eigen::Index o = problem.offset[k];
+    if (problem.excluded[k]) hi[o] = 0.0;
+    for (Eigen::Index i = o + 1; i < problem.offset[k + 1]; ++i) {
+      lo[i] = movable[k] ? -problem.bounds[k] : 0.0;
+      hi[i] = movable[k] ? problem.bounds[k] : 0.0;
+    }
+  }
+}
+
+/// Coulomb's law for the answer `r` of the radii `problem.bounds`: a slipping contact's radius
+/// must be μP, a sticking one's friction within μP (a sticking radius may differ from μP without
+/// harm). Returns the largest violation times the contact's tangential compliance (mm), and moves
+/// each radius by `relaxation` of the way to μP; a contact that slipped on its old circle is put
+/// on the new one, and a zero radius (the contact slips freely) must become μP too.
+double update_radii(FrictionalProblem& problem, const std::vector<double>& compliance,
+                    double relaxation, Eigen::VectorXd& r) {
+  const Eigen::Index n = static_cast<Eigen::Index>(problem.offset.size()) - 1;
+  double change = 0.0;
+  for (Eigen::Index k = 0; k < n; ++k) {
+    const Eigen::Index o = problem.offset[k];
+    const double g = problem.mu * std::max(r[o], 0.0);
+    const Eigen::Index t = problem.offset[k + 1] - o - 1;
+    const double size = r.segment(o + 1, t).norm();
+    const bool slipping = !(problem.bounds[k] > 0.0) || size >= (1.0 - 1e-9) * problem.bounds[k];
+    change =
+        std::max(change, (slipping ? std::fabs(g - problem.bounds[k]) : std::max(0.0, size - g)) *
+                             compliance[k]);
+    if (slipping && size > 0.0) r.segment(o + 1, t) *= g / size;
+    problem.bounds[k] += relaxation * (g - problem.bounds[k]);
+  }
+  return change;
+}
+
+/// The radius updates' relaxation: halved (down to 1/64) when the violation grows, grown by half
+/// (up to 1) after three updates in a row that lowered it.
+struct Relaxation {
+  double factor = 1.0;
+  double last_change = INFINITY;
+  int falling = 0;
+
+  void adapt(double change) {
+    if (change > last_change)
+      factor = std::max(factor * 0.5, 1.0 / 64.0), falling = 0;
+    else if (++falling >= 3)
+      factor = std::min(factor * 1.5, 1.0), falling = 0;
+    last_change = change;
+  }
+};
+
+/// Why the fixed point did not settle: its last inner problem was not solved, or the radii still
+/// moved the slips by `change` (mm) after the last update.
+std::string unsettled_message(const FrictionalProblem& problem, const TrescaOptions& options,
+                              bool one_tangent, const FrictionalSolve& inner, double change) {
+  std::ostringstream out;
+  out.precision(3);
+  if (!inner.settled && one_tangent)
+    out << "the frictional contact problem's Tresca problem was not solved in "
+        << options.max_active_set_passes << " active-set passes";
+  else if (!inner.settled)
+    out << "the frictional contact problem did not settle: after " << inner.newton_steps
+        << " Newton steps on its Tresca problem Coulomb's law is still violated by "
+        << inner.residual << " mm";
+  else
+    out << "the Tresca fixed point of the frictional contact problem did not settle: after "
+        << options.max_updates << " updates the disk radii still move the slips by " << change
+        << " mm";
+  out << " (mu = " << problem.mu << "; the solution is unique only for small mu)";
+  return out.str();
+}
+
+}  // namespace
+
+TrescaSolve tresca_fixed_point(FrictionalProblem& problem, const TrescaOptions& options,
+                               Eigen::VectorXd& r) {
+  TrescaSolve result;
+  const Eigen::Index n = static_cast<Eigen::Index>(problem.offset.size()) - 1;
+  problem.bounds.resize(n);
+  for (Eigen::Index k = 0; k < n; ++k)
+    problem.bounds[k] = problem.mu * std::max(r[problem.offset[k]], 0.0);
+  const double settled = settled_slip(problem, options);
+  bool one_tangent = true;
+  for (Eigen::Index k = 0; k < n; ++k)
+    one_tangent &= problem.offset[k + 1] - problem.offset[k] <= 2;
+  std::vector<double> compliance;
+  std::vector<char> movable;
+  tangential_compliances(problem, compliance, movable);
+  FrictionalSolve inner;
+  Relaxation relaxation;
+  double change = INFINITY;
+  int updates = 0;
+  for (updates = 1; updates <= options.max_updates; ++updates) {
+    if (one_tangent) {
+      Eigen::VectorXd lo, hi;
+      tresca_box(problem, movable, lo, hi);
+      const BoundedSolve box = bounded_active_set(problem.W, problem.q, lo, hi, options.threshold,
+                                                  options.max_active_set_passes, r);
+      result.active_set_passes += box.passes;
+      inner.settled = box.solved;
+      inner.newton_steps = 0;
+      inner.residual = box.solved ? 0.0 : INFINITY;
+    } else {
+      inner = solve_frictional(problem, options.threshold, options.max_newton_steps, r);
+      result.newton_steps += inner.newton_steps;
+    }
+    if (!inner.settled) break;
+    change = update_radii(problem, compliance, relaxation.factor, r);
+    relaxation.adapt(change);
+    if (change <= settled) break;
+  }
+  result.updates = std::min(updates, options.max_updates);
+  result.settled = inner.settled && !(change > settled);
+  if (!result.settled)
+    result.trouble = unsettled_message(problem, options, one_tangent, inner, change);
+  return result;
+}
+
+}  // namespace fibrecheck

@@ -1,0 +1,47 @@
+#pragma once
+
+#include <Eigen/Core>
+#include <string>
+
+#include "frictional_contact.h"
+
+namespace fibrecheck {
+
+struct TrescaOptions {
+  double threshold = 0.0;  ///< mm: the overlaps and slips the inner problems resolve
+  double tolerance = 0.0;  ///< mm: the scene's overlap tolerance t_d
+  int max_active_set_passes = 100000;
+  int max_newton_steps = 100;
+  int max_updates = 500;
+};
+
+struct TrescaSolve {
+  bool settled = false;  ///< every inner problem solved and the disk radii settled
+  int updates = 0;       ///< radius updates (fixed-point iterations)
+  long active_set_passes = 0;
+  long newton_steps = 0;
+  std::string trouble;  ///< why it did not settle (empty when it did)
+};
+
+/// Coulomb's law at every contact of one load step (DESIGN §3), solved exactly as a Tresca fixed
+/// point. With each contact's disk radius g_j held fixed, the frictional problem is convex (a
+/// Tresca problem): for slices and walls alone (one tangent per contact) it is the box-constrained
+/// QP 0 ≤ P, |F| ≤ g, solved exactly by bounded_active_set; with crossings (two tangents, a disk)
+/// by the semismooth Newton method of solve_frictional with `problem.bounds` set. The radii then
+/// move to μ times the normal forces they produced, and the two repeat until the radii produce the
+/// normal forces they assumed: the largest violation of Coulomb's law, times the contact's
+/// tangential compliance (the slip it stands for, mm), below the larger of `threshold`, 1e-9 of the
+/// largest slip under the loads and 1e-3 of the scene's tolerance — a thousand times tighter than
+/// the iterative solver's stopping criterion. Coulomb's law itself, solved by Newton's method,
+/// cycles between sticking and slipping sets on compacted tows; so does the plain map g ← μP,
+/// which is therefore relaxed (halved down to 1/64 while the violation grows, grown again while it
+/// falls). The iterative solver has a Tresca fixed point of its own; this one is written apart
+/// from it on purpose, since the reference must not share a solution method with what it checks.
+///
+/// `r` holds the start (the frictionless answer and the friction carried over) on entry and the
+/// answer on return; `problem.excluded` marks the contacts nothing can move, and `problem.bounds`
+/// is set here.
+TrescaSolve tresca_fixed_point(FrictionalProblem& problem, const TrescaOptions& options,
+                               Eigen::VectorXd& r);
+
+}  // namespace fibrecheck
