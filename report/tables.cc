@@ -20,6 +20,15 @@ std::string seconds(double value) {
   return text;
 }
 
+std::string fixed3(double value) {
+  if (!std::isfinite(value)) return "–";
+  std::ostringstream out;
+  out.setf(std::ios::fixed);
+  out.precision(3);
+  out << value;
+  return out.str();
+}
+
 std::string latex_escape(const std::string& text) {
   std::string out;
   for (std::size_t i = 0; i < text.size(); ++i) {

@@ -26,6 +26,8 @@ std::string latex(const Table& table);
 std::string sci(double value);
 /// A time in seconds with four significant digits.
 std::string seconds(double value);
+/// A number with three decimals ("0.452"), "–" for NaN.
+std::string fixed3(double value);
 
 /// Text with LaTeX's special characters escaped.
 std::string latex_escape(const std::string& text);

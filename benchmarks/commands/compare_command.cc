@@ -68,20 +68,7 @@ int run_compare(const CompareArguments& args) {
     const Comparison c = compare_scene(scene, solvers, [&](const std::string& line) {
       if (!args.quiet) std::cerr << "  " << line << "\n";
     });
-    const std::filesystem::path dir = std::filesystem::path(args.out) / scene.name;
-    std::vector<std::pair<std::string, std::string>> files = {
-        {"scene", "scene.json"},
-        {"user", "user.result.json"},
-        {"converged", "converged.result.json"},
-        {"reference_slices", "reference_slices.result.json"}};
-    if (c.continuous) files.push_back({"reference_continuous", "reference_continuous.result.json"});
-    write_scene((dir / "scene.json").string(), scene);
-    write_result((dir / "user.result.json").string(), c.user);
-    write_result((dir / "converged.result.json").string(), c.converged);
-    write_result((dir / "reference_slices.result.json").string(), c.slices);
-    if (c.continuous)
-      write_result((dir / "reference_continuous.result.json").string(), *c.continuous);
-    write_file_atomically((dir / "compare.json").string(), to_json(c, files).dump(1) + "\n");
+    write_comparison((std::filesystem::path(args.out) / scene.name).string(), scene, c);
     if (!c.comparable) code = kExitUnsolved;
     comparisons.push_back(c);
   }

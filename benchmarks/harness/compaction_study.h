@@ -16,11 +16,10 @@
 //     (continued:) --final-compaction 0.7 --friction 0.2 --out tow19.json
 //   fibrecheck study compaction tow19.json --out study
 
-#include <cmath>
-#include <nlohmann/json_fwd.hpp>
 #include <string>
 #include <vector>
 
+#include "compaction_study_record.h"
 #include "comparison.h"
 #include "scene.h"
 
@@ -37,69 +36,10 @@ struct CompactionStudyOptions {
   bool quiet = false;
 };
 
-/// A power law p/E = k(Vfⁿ − Vf0ⁿ) fitted by least squares (n = 3 for van Wyk).
-struct PowerLawFit {
-  bool valid = false;
-  double k = NAN, n = NAN, vf0 = NAN, r2 = NAN;
-  int points = 0;
-};
-
-/// Fits p/E = k(Vfⁿ − Vf0ⁿ) at the given n: linear least squares in Vfⁿ; R² of the pressures.
-/// Needs two points with different Vf.
-PowerLawFit fit_power_law(const std::vector<double>& vf, const std::vector<double>& pressure,
-                          double modulus, double n);
-/// Toll's law: the n in [1, 30] (steps of 0.01) with the best R². Needs three points.
-PowerLawFit fit_toll(const std::vector<double>& vf, const std::vector<double>& pressure,
-                     double modulus);
-
-struct CompactionPoint {
-  int step = 0;  ///< from 1
-  double compaction = 1, load_factor = 1, fibre_volume_fraction = 0, pressure = 0;
-  double strain_energy = 0, contacts_per_fibre = 0, time_s = 0;
-  long iterations = 0;
-  std::string status;
-};
-
-/// One solver's load path.
-struct CompactionRun {
-  std::string solver;  ///< "iterative" | "fem" (as in the result files)
-  std::string rule;
-  double mu = 0;
-  std::string friction_model;  ///< "none" (μ = 0), "coulomb" or "seed"
-  std::string status, message;
-  double time_s = 0;
-  std::vector<CompactionPoint> points;
-  PowerLawFit van_wyk, toll;
-  /// Result files of kept states (relative to the study folder), with their steps.
-  std::vector<std::pair<int, std::string>> sections;
-
-  std::string label() const;
-};
-
-/// Iterative against reference on one friction setting: the largest per-step difference of the
-/// pressure relative to the reference curve's largest pressure, and of the strain energy relative
-/// to its largest, over the steps both converged.
-struct CompactionAgreement {
-  double mu = 0;
-  std::string friction_model, against;  ///< the iterative run's model, the reference's
-  double pressure_error = NAN, energy_error = NAN;
-  int steps = 0;
-};
-
-struct CompactionStudyScene {
-  std::string scene;
-  std::string scene_file;  ///< the stepped scene as solved (relative to the study folder)
-  double youngs_modulus = 0;
-  std::vector<CompactionRun> runs;
-  std::vector<CompactionAgreement> agreement;
-};
-
 /// Throws InputError for a scene without walls, or without steps when none are asked for.
 std::vector<CompactionStudyScene> run_compaction_study(const std::vector<Scene>& scenes,
                                                        const CompactionStudyOptions& options,
                                                        const Solvers& solvers,
                                                        const std::string& folder);
-
-nlohmann::json to_json(const CompactionStudyScene& scene);
 
 }  // namespace fibrecheck

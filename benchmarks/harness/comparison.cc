@@ -6,6 +6,8 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "atomic_file.h"
+
 namespace fibrecheck {
 
 double seed_stable_limit(const Scene& scene, const Solvers& solvers) {
@@ -94,49 +96,57 @@ Comparison compare_scene(const Scene& scene, const Solvers& solvers,
 }
 
 namespace {
-nlohmann::json run_json(const Result& r) {
-  return {{"solver", r.solver},
-          {"rule", r.rule},
-          {"status", to_string(r.status)},
-          {"criterion", to_string(r.criterion)},
-          {"iterations", r.iterations},
-          {"wall_time_s", r.wall_time_s},
-          {"c", r.c},
-          {"c_stable_limit", r.c_stable_limit}};
+
+RunSummary summary_of(const Result& r) {
+  return {r.solver,      r.rule, to_string(r.status), to_string(r.criterion), r.iterations,
+          r.wall_time_s, r.c,    r.c_stable_limit};
 }
+
 }  // namespace
+
+ComparisonRecord record_of(const Comparison& c,
+                           const std::vector<std::pair<std::string, std::string>>& files) {
+  ComparisonRecord r;
+  r.scene = c.scene;
+  r.comparable = c.comparable;
+  r.reason = c.reason;
+  r.runs = {{"user", summary_of(c.user)},
+            {"converged", summary_of(c.converged)},
+            {"reference_slices", summary_of(c.slices)}};
+  if (c.continuous) r.runs["reference_continuous"] = summary_of(*c.continuous);
+  r.rule = c.user.rule;
+  r.c = c.user.c;
+  r.ground_truth = c.continuous ? "reference_continuous" : "reference_slices";
+  r.truth_error_estimate = c.truth_error_estimate;
+  r.total = c.total.errors;
+  r.iteration = c.iteration.errors;
+  r.slicing = c.slicing.errors;
+  r.agreement = c.agreement.errors;
+  r.pairs = c.total.pairs;
+  for (const auto& [label, file] : files) r.files[label] = file;
+  return r;
+}
 
 nlohmann::json to_json(const Comparison& c,
                        const std::vector<std::pair<std::string, std::string>>& files) {
-  nlohmann::json j;
-  j["scene"] = c.scene;
-  j["comparable"] = c.comparable;
-  if (!c.comparable) j["not_comparable"] = c.reason;
-  j["runs"] = {{"user", run_json(c.user)},
-               {"converged", run_json(c.converged)},
-               {"reference_slices", run_json(c.slices)}};
-  if (c.continuous) j["runs"]["reference_continuous"] = run_json(*c.continuous);
-  j["rule"] = c.user.rule;
-  j["c"] = c.user.c;
-  j["ground_truth"] = c.continuous ? "reference_continuous" : "reference_slices";
-  j["ground_truth_error_estimate"] = c.truth_error_estimate;
-  if (c.comparable) {
-    const nlohmann::json total = to_json(c.total.errors);
-    for (auto it = total.begin(); it != total.end(); ++it) j[it.key()] = it.value();
-    j["iteration_error"] = to_json(c.iteration.errors);
-    j["slicing_error"] = to_json(c.slicing.errors);
-    j["agreement_error"] = to_json(c.agreement.errors);
-    j["pairs"] = nlohmann::json::array();
-    for (std::size_t i = 0; i < c.total.pairs.size(); ++i) {
-      nlohmann::json row = to_json(c.total.pairs[i]);
-      row["force_user"] = row["force_run"];
-      row.erase("force_run");
-      j["pairs"].push_back(row);
-    }
-  }
-  j["files"] = nlohmann::json::object();
-  for (const auto& [label, file] : files) j["files"][label] = file;
-  return j;
+  return to_json(record_of(c, files));
+}
+
+void write_comparison(const std::string& folder, const Scene& scene, const Comparison& c) {
+  const std::filesystem::path dir(folder);
+  std::vector<std::pair<std::string, std::string>> files = {
+      {"scene", "scene.json"},
+      {"user", "user.result.json"},
+      {"converged", "converged.result.json"},
+      {"reference_slices", "reference_slices.result.json"}};
+  if (c.continuous) files.push_back({"reference_continuous", "reference_continuous.result.json"});
+  write_scene((dir / "scene.json").string(), scene);
+  write_result((dir / "user.result.json").string(), c.user);
+  write_result((dir / "converged.result.json").string(), c.converged);
+  write_result((dir / "reference_slices.result.json").string(), c.slices);
+  if (c.continuous)
+    write_result((dir / "reference_continuous.result.json").string(), *c.continuous);
+  write_file_atomically((dir / "compare.json").string(), to_json(c, files).dump(1) + "\n");
 }
 
 std::string comparison_table(const std::vector<Comparison>& comparisons) {

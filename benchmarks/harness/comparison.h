@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "comparison_record.h"
 #include "metrics.h"
 #include "result.h"
 #include "scene.h"
@@ -70,10 +71,19 @@ Comparison compare_results(const std::string& scene, const Result& user, const R
                            const Result& slices, const std::optional<Result>& continuous,
                            const std::string& reason = "");
 
-/// The comparison as `compare.json` (DESIGN §6): errors, their split, per-pair rows, and every
-/// run's time, iterations, rule and c. Result files are named in `files` (label → file name).
+/// The comparison's record (DESIGN §6): errors, their split, per-pair rows, and every run's
+/// time, iterations, rule and c. Result files are named in `files` (label → file name).
+ComparisonRecord record_of(const Comparison& comparison,
+                           const std::vector<std::pair<std::string, std::string>>& files = {});
+
+/// The comparison as `compare.json`: its record.
 nlohmann::json to_json(const Comparison& comparison,
                        const std::vector<std::pair<std::string, std::string>>& files = {});
+
+/// Writes one scene's comparison into `folder`: scene.json, every run's result
+/// (user.result.json, converged.result.json, reference_slices.result.json and, where it ran,
+/// reference_continuous.result.json) and compare.json naming them.
+void write_comparison(const std::string& folder, const Scene& scene, const Comparison& comparison);
 
 /// A short table of comparisons, one line each.
 std::string comparison_table(const std::vector<Comparison>& comparisons);

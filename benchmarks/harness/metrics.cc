@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "input_error.h"
+#include "json_number.h"
 
 namespace fibrecheck {
 
@@ -142,7 +143,15 @@ double observed_order(const std::vector<double>& n, const std::vector<double>& e
 }
 
 nlohmann::json to_json(const Errors& e) {
-  return {{"deflection_error", e.deflection}, {"force_error", e.force}, {"energy_error", e.energy}};
+  return {{"deflection_error", number_or_null(e.deflection)},
+          {"force_error", number_or_null(e.force)},
+          {"energy_error", number_or_null(e.energy)}};
+}
+
+void from_json(const nlohmann::json& j, Errors& e) {
+  e.deflection = number_at(j, "deflection_error");
+  e.force = number_at(j, "force_error");
+  e.energy = number_at(j, "energy_error");
 }
 
 nlohmann::json to_json(const PairError& p) {
@@ -153,6 +162,15 @@ nlohmann::json to_json(const PairError& p) {
                       {"error", p.error}};
   if (p.distribution_error >= 0.0) j["distribution_error"] = p.distribution_error;
   return j;
+}
+
+void from_json(const nlohmann::json& j, PairError& p) {
+  p.kind = j.at("kind");
+  p.fibres = {j.at("fibres").at(0).get<std::string>(), j.at("fibres").at(1).get<std::string>()};
+  p.force_run = j.at("force_run");
+  p.force_truth = j.at("force_truth");
+  p.error = j.at("error");
+  p.distribution_error = j.value("distribution_error", -1.0);
 }
 
 }  // namespace fibrecheck

@@ -53,7 +53,11 @@ ErrorReport measure_errors(const Result& run, const Result& truth, const std::st
 /// order of convergence p in error ∝ n^−p (returned as p; NaN with fewer than two usable points).
 double observed_order(const std::vector<double>& n, const std::vector<double>& error);
 
+/// {deflection_error, force_error, energy_error}; null for an error that is not a number.
 nlohmann::json to_json(const Errors& errors);
+void from_json(const nlohmann::json& j, Errors& errors);
+/// Without `distribution_error` the pair is a point contact's.
 nlohmann::json to_json(const PairError& pair);
+void from_json(const nlohmann::json& j, PairError& pair);
 
 }  // namespace fibrecheck

@@ -18,6 +18,8 @@
 #include <string>
 #include <vector>
 
+#include "scale_study_record.h"
+
 namespace fibrecheck {
 
 /// What a finished program run tells: its exit code, wall time and peak resident memory (of the
@@ -50,33 +52,6 @@ struct ScaleStudyOptions {
   /// The programs: fibrecheck, fibrecheck-siconos (empty: no peer), mpiexec (empty: one process).
   std::string program, peer_program, mpiexec;
   bool quiet = false;
-};
-
-struct ScalePoint {
-  int fibres = 0, slices = 0;
-  std::string solver;  ///< "iterative" | "fem" | "siconos"
-  std::string method;  ///< the rule, "active_set", or the peer's solver
-  int processes = 1;
-  std::string status;
-  long candidates = 0, active = 0, iterations = 0, unknowns = 0;
-  double time_s = 0.0;          ///< the solver's own time (without start-up and files)
-  double process_time_s = 0.0;  ///< the whole process
-  double peak_memory_mb = 0.0;
-  double agreement = -1.0;  ///< peer: against the reference (relative), −1 when not compared
-  double ms_per_iteration() const { return iterations > 0 ? 1e3 * time_s / iterations : 0.0; }
-};
-
-/// Time (and memory) ∝ fibres^exponent for one solver and method, fitted by least squares on
-/// log–log over its converged sizes (two at least).
-struct ScaleExponent {
-  std::string solver, method;
-  int sizes = 0;
-  double time = 0.0, memory = 0.0;
-};
-
-struct ScaleStudy {
-  std::vector<ScalePoint> points;
-  std::vector<ScaleExponent> exponents;
 };
 
 /// Runs the study into `folder`: scenes/, results/, problems/, scale.csv and scale_study.json.

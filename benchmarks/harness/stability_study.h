@@ -16,13 +16,12 @@
 //   fibrecheck study stability scenes/two_fibres_crossing.json scenes/extreme/*.json --out study
 
 #include <cmath>
-#include <nlohmann/json_fwd.hpp>
 #include <string>
 #include <vector>
 
 #include "comparison.h"
-#include "metrics.h"
 #include "scene.h"
+#include "stability_study_record.h"
 
 namespace fibrecheck {
 
@@ -33,48 +32,9 @@ struct StabilityStudyOptions {
   bool quiet = false;
 };
 
-struct StepPoint {
-  double fraction = 0, c = 0;  ///< c/c_crit and c (N/mm)
-  long iterations = 0;
-  std::string status, criterion;
-  double time_s = 0;
-};
-
-struct StiffnessPoint {
-  double ratio = 0;
-  std::string method;  ///< "seed 0.5", "auto", "accelerated", "reference"
-  long iterations = 0;
-  std::string status;
-  double time_s = 0;
-  Errors errors;  ///< against the reference at the same ratio
-};
-
-/// One solver on one catalogue scene.
-struct CataloguePoint {
-  std::string solver;  ///< "iterative" | "reference"
-  std::string rule;
-  std::string status, expected_status;  ///< a status, or `refused`
-  long iterations = 0;
-  double time_s = 0;
-  double error = NAN;    ///< worst relative error against the scene's closed forms
-  std::string failures;  ///< empty: as expected
-};
-
-struct StabilityStudyScene {
-  std::string scene;
-  double c_crit = 0;
-  std::vector<StepPoint> steps;
-  std::vector<StiffnessPoint> stiffness;
-  std::vector<CataloguePoint> catalogue;
-};
-
 std::vector<StabilityStudyScene> run_stability_study(const std::vector<Scene>& scenes,
                                                      const StabilityStudyOptions& options,
                                                      const Solvers& solvers,
                                                      const std::string& folder);
-
-nlohmann::json to_json(const StabilityStudyScene& scene);
-nlohmann::json to_json(const CataloguePoint& point);
-CataloguePoint catalogue_point(const nlohmann::json& point);
 
 }  // namespace fibrecheck

@@ -4,10 +4,10 @@
 #include <cmath>
 #include <filesystem>
 #include <map>
-#include <nlohmann/json.hpp>
 #include <sstream>
 
 #include "atomic_file.h"
+#include "csv_file.h"
 #include "study_store.h"
 
 namespace fibrecheck {
@@ -29,6 +29,173 @@ std::string number_text(double x) {
   std::ostringstream out;
   out << x;
   return out.str();
+}
+
+/// An update rule as the study runs it: its label, and the seed's c (N/mm).
+struct Rule {
+  std::string label;
+  UpdateRule rule;
+  double c;
+};
+
+std::vector<Rule> rules_of(const Scene& scene, const ToleranceStudyOptions& options,
+                           const Solvers& solvers) {
+  const double c_limit = options.seed_fractions.empty() ? NAN : seed_stable_limit(scene, solvers);
+  std::vector<Rule> list;
+  for (double f : options.seed_fractions)
+    list.push_back({"seed " + number_text(f), UpdateRule::seed, f * c_limit});
+  list.push_back({"auto", UpdateRule::automatic, NAN});
+  list.push_back({"accelerated", UpdateRule::accelerated, NAN});
+  return list;
+}
+
+/// A point of the journal. Its lines carry their scene and no front (marked once all points are
+/// in); lines from before the study varied the slices have none.
+TolerancePoint journal_point(nlohmann::json line) {
+  line.erase("scene");
+  line["pareto"] = false;
+  if (!line.contains("slices")) line["slices"] = 0;
+  return line.get<TolerancePoint>();
+}
+
+/// One scene's runs against its ground truth, each kept in the study's journal as it finishes
+/// (a run already there is not run again).
+class ToleranceSceneRuns {
+ public:
+  ToleranceSceneRuns(const Scene& scene, const ToleranceStudyOptions& options,
+                     const Solvers& solvers, StudyStore& store, StudyProgress& progress,
+                     std::size_t& index)
+      : scene_(scene),
+        options_(options),
+        solvers_(solvers),
+        store_(store),
+        progress_(progress),
+        index_(index) {}
+
+  ToleranceStudyScene run() {
+    progress_.start(index_++, scene_.name + ": ground truth");
+    continuous_ = needs_continuous_reference(scene_) && !options_.against_slices;
+    truth_ = continuous_ ? stored_ground_truth(scene_, solvers_, store_.folder())
+                         : solvers_.reference_slices(scene_);
+    ToleranceStudyScene study;
+    study.scene = scene_.name;
+    study.truth = continuous_ ? "reference_continuous" : "reference_slices";
+    if (truth_.finite_elements)
+      study.truth_error_estimate = truth_.finite_elements->line_force_error_estimate;
+    iterative_runs();
+    reference_runs();
+    for (const nlohmann::json& line : store_.points())
+      if (line.at("scene") == scene_.name) study.points.push_back(journal_point(line));
+    pareto_and_speedups(study, options_.error_levels);
+    return study;
+  }
+
+ private:
+  /// Every rule at every tolerance and slice factor.
+  void iterative_runs() {
+    double radius = INFINITY;
+    for (const FibreSpec& f : scene_.fibres) radius = std::min(radius, f.radius);
+    const std::vector<int> factors =
+        options_.against_slices ? std::vector<int>{1} : options_.slice_factors;
+    for (const Rule& rule : rules_of(scene_, options_, solvers_))
+      for (int factor : factors)
+        for (double t : options_.tolerances) {
+          const double td = t * radius;
+          const int n = scene_.contact.slices * factor;
+          const std::string key =
+              scene_.name + "/" + rule.label + "/" + number_text(td) + "/" + std::to_string(n);
+          if (!start(key, rule.label + ", t_d = " + number_text(td) + " mm, " + std::to_string(n) +
+                              " slices"))
+            continue;
+          Scene s = scene_;
+          s.contact.slices = n;
+          s.solver.rule = rule.rule;
+          // One limit for every n: the line part of D½WD½ hardly depends on it.
+          if (rule.rule == UpdateRule::seed) s.solver.c = rule.c;
+          s.solver.overlap_tolerance = td;
+          s.solver.energy_tolerance = 0.0;
+          s.solver.max_iterations = options_.max_iterations;
+          record(key, rule.label, td, n, timed([&] { return solvers_.iterative(s); }));
+        }
+  }
+
+  /// The reference at each refinement (once, on the scene's slices, without continuous contact).
+  void reference_runs() {
+    for (int K : options_.refinements) {
+      if (!continuous_ && K != options_.refinements.front()) {
+        ++index_;
+        continue;
+      }
+      const std::string key = scene_.name + "/reference/" + std::to_string(K);
+      if (!start(key, continuous_ ? "reference, refinement " + std::to_string(K) : "reference"))
+        continue;
+      record(key, "reference", K, scene_.contact.slices << K, timed([&] {
+               return continuous_ ? solvers_.reference_refined(scene_, K)
+                                  : solvers_.reference_slices(scene_);
+             }));
+    }
+  }
+
+  /// False when the point is in the journal already; else announces it.
+  bool start(const std::string& key, const std::string& what) {
+    if (store_.has(key)) {
+      progress_.skip();
+      ++index_;
+      return false;
+    }
+    progress_.start(index_++, scene_.name + ", " + what);
+    return true;
+  }
+
+  void record(const std::string& key, const std::string& method, double parameter, int slices,
+              const Result& run) {
+    TolerancePoint p;
+    p.method = method;
+    p.parameter = parameter;
+    p.slices = slices;
+    p.time_s = run.wall_time_s;
+    p.iterations = run.iterations;
+    p.status = to_string(run.status);
+    p.errors = measure_errors(run, truth_, scene_.name).errors;
+    nlohmann::json line = to_json(p);
+    line.erase("pareto");
+    line["scene"] = scene_.name;
+    store_.add(key, line);
+  }
+
+  const Scene& scene_;
+  const ToleranceStudyOptions& options_;
+  const Solvers& solvers_;
+  StudyStore& store_;
+  StudyProgress& progress_;
+  std::size_t& index_;
+  bool continuous_ = false;
+  Result truth_;
+};
+
+void write_tolerance_study(const std::vector<ToleranceStudyScene>& studies,
+                           const std::string& folder) {
+  nlohmann::json all = nlohmann::json::array();
+  std::vector<std::vector<std::string>> rows, speed;
+  for (const ToleranceStudyScene& s : studies) {
+    all.push_back(to_json(s));
+    for (const TolerancePoint& p : s.points)
+      rows.push_back({s.scene, p.method, cell(p.parameter), std::to_string(p.slices),
+                      cell(p.time_s), std::to_string(p.iterations), p.status,
+                      cell(p.errors.deflection), cell(p.errors.force), cell(p.errors.energy),
+                      p.pareto ? "1" : "0"});
+    for (const SpeedUp& u : s.speedups)
+      speed.push_back({s.scene, cell(u.error_level), cell(u.iterative_time_s),
+                       cell(u.reference_time_s), cell(u.speedup())});
+  }
+  const std::filesystem::path dir(folder);
+  write_file_atomically((dir / "tolerance_study.json").string(), all.dump(1) + "\n");
+  write_csv((dir / "tolerance_study.csv").string(),
+            {"scene", "method", "parameter", "slices", "time_s", "iterations", "status",
+             "deflection_error", "force_error", "energy_error", "pareto"},
+            rows);
+  write_csv((dir / "speedup.csv").string(),
+            {"scene", "error_level", "iterative_time_s", "reference_time_s", "speedup"}, speed);
 }
 
 }  // namespace
@@ -76,150 +243,10 @@ std::vector<ToleranceStudyScene> run_tolerance_study(const std::vector<Scene>& s
       options.quiet);
   std::vector<ToleranceStudyScene> out;
   std::size_t index = 0;
-  for (const Scene& scene : scenes) {
-    progress.start(index++, scene.name + ": ground truth");
-    const bool continuous = needs_continuous_reference(scene) && !options.against_slices;
-    const Result truth =
-        continuous ? stored_ground_truth(scene, solvers, folder) : solvers.reference_slices(scene);
-    ToleranceStudyScene study;
-    study.scene = scene.name;
-    study.truth = continuous ? "reference_continuous" : "reference_slices";
-    if (truth.finite_elements)
-      study.truth_error_estimate = truth.finite_elements->line_force_error_estimate;
-    double radius = INFINITY;
-    for (const FibreSpec& f : scene.fibres) radius = std::min(radius, f.radius);
-    const double c_limit = options.seed_fractions.empty() ? NAN : seed_stable_limit(scene, solvers);
-    struct Rule {
-      std::string label;
-      UpdateRule rule;
-      double c;
-    };
-    std::vector<Rule> list;
-    for (double f : options.seed_fractions)
-      list.push_back({"seed " + number_text(f), UpdateRule::seed, f * c_limit});
-    list.push_back({"auto", UpdateRule::automatic, NAN});
-    list.push_back({"accelerated", UpdateRule::accelerated, NAN});
-    auto record = [&](const std::string& key, const std::string& method, double parameter,
-                      int slices, const Result& run) {
-      nlohmann::json point = to_json(measure_errors(run, truth, scene.name).errors);
-      point.update({{"scene", scene.name},
-                    {"method", method},
-                    {"parameter", parameter},
-                    {"slices", slices},
-                    {"time_s", run.wall_time_s},
-                    {"iterations", run.iterations},
-                    {"status", to_string(run.status)}});
-      store.add(key, point);
-    };
-    const std::vector<int> factors =
-        options.against_slices ? std::vector<int>{1} : options.slice_factors;
-    for (const Rule& rule : list)
-      for (int factor : factors)
-        for (double t : options.tolerances) {
-          const double td = t * radius;
-          const int n = scene.contact.slices * factor;
-          const std::string key =
-              scene.name + "/" + rule.label + "/" + number_text(td) + "/" + std::to_string(n);
-          if (store.has(key)) {
-            progress.skip();
-            ++index;
-            continue;
-          }
-          progress.start(index++, scene.name + ", " + rule.label + ", t_d = " + number_text(td) +
-                                      " mm, " + std::to_string(n) + " slices");
-          Scene s = scene;
-          s.contact.slices = n;
-          s.solver.rule = rule.rule;
-          // The seed's limit is that of D½WD½, whose line part hardly depends on n (W grows
-          // with the slices as D shrinks): the same fractions of one limit.
-          if (rule.rule == UpdateRule::seed) s.solver.c = rule.c;
-          s.solver.overlap_tolerance = td;
-          s.solver.energy_tolerance = 0.0;
-          s.solver.max_iterations = options.max_iterations;
-          record(key, rule.label, td, n, timed([&] { return solvers.iterative(s); }));
-        }
-    for (int K : options.refinements) {
-      if (!continuous && K != options.refinements.front()) {
-        ++index;
-        continue;
-      }
-      const std::string key = scene.name + "/reference/" + std::to_string(K);
-      if (store.has(key)) {
-        progress.skip();
-        ++index;
-        continue;
-      }
-      progress.start(index++, scene.name + ", reference" +
-                                  (continuous ? ", refinement " + std::to_string(K) : ""));
-      record(key, "reference", K, scene.contact.slices << K, timed([&] {
-               return continuous ? solvers.reference_refined(scene, K)
-                                 : solvers.reference_slices(scene);
-             }));
-    }
-    for (const nlohmann::json& p : store.points()) {
-      if (p["scene"] != scene.name) continue;
-      TolerancePoint point;
-      point.method = p["method"];
-      point.parameter = p["parameter"];
-      point.slices = p.value("slices", 0);
-      point.time_s = p["time_s"];
-      point.iterations = p["iterations"];
-      point.status = p["status"];
-      point.errors = {p["deflection_error"], p["force_error"], p["energy_error"]};
-      study.points.push_back(point);
-    }
-    pareto_and_speedups(study, options.error_levels);
-    out.push_back(study);
-  }
-  nlohmann::json all = nlohmann::json::array();
-  std::vector<std::vector<std::string>> rows, speed;
-  for (const ToleranceStudyScene& s : out) {
-    all.push_back(to_json(s));
-    for (const TolerancePoint& p : s.points)
-      rows.push_back({s.scene, p.method, cell(p.parameter), std::to_string(p.slices),
-                      cell(p.time_s), std::to_string(p.iterations), p.status,
-                      cell(p.errors.deflection), cell(p.errors.force), cell(p.errors.energy),
-                      p.pareto ? "1" : "0"});
-    for (const SpeedUp& u : s.speedups)
-      speed.push_back({s.scene, cell(u.error_level), cell(u.iterative_time_s),
-                       cell(u.reference_time_s), cell(u.speedup())});
-  }
-  const std::filesystem::path dir(folder);
-  write_file_atomically((dir / "tolerance_study.json").string(), all.dump(1) + "\n");
-  write_csv((dir / "tolerance_study.csv").string(),
-            {"scene", "method", "parameter", "slices", "time_s", "iterations", "status",
-             "deflection_error", "force_error", "energy_error", "pareto"},
-            rows);
-  write_csv((dir / "speedup.csv").string(),
-            {"scene", "error_level", "iterative_time_s", "reference_time_s", "speedup"}, speed);
+  for (const Scene& scene : scenes)
+    out.push_back(ToleranceSceneRuns(scene, options, solvers, store, progress, index).run());
+  write_tolerance_study(out, folder);
   return out;
-}
-
-nlohmann::json to_json(const ToleranceStudyScene& s) {
-  auto number = [](double x) { return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(); };
-  nlohmann::json points = nlohmann::json::array(), speedups = nlohmann::json::array();
-  for (const TolerancePoint& p : s.points) {
-    nlohmann::json j = to_json(p.errors);
-    j.update({{"method", p.method},
-              {"parameter", p.parameter},
-              {"slices", p.slices},
-              {"time_s", p.time_s},
-              {"iterations", p.iterations},
-              {"status", p.status},
-              {"pareto", p.pareto}});
-    points.push_back(j);
-  }
-  for (const SpeedUp& u : s.speedups)
-    speedups.push_back({{"error_level", u.error_level},
-                        {"iterative_time_s", number(u.iterative_time_s)},
-                        {"iterative_method", u.iterative_method},
-                        {"reference_time_s", number(u.reference_time_s)},
-                        {"speedup", number(u.speedup())}});
-  return {{"scene", s.scene},
-          {"ground_truth", s.truth},
-          {"truth_error_estimate", s.truth_error_estimate},
-          {"points", points},
-          {"speedups", speedups}};
 }
 
 }  // namespace fibrecheck

@@ -14,13 +14,12 @@
 // Sample run:
 //   fibrecheck study tolerance scenes/small_tow_19.json --out study
 
-#include <nlohmann/json_fwd.hpp>
 #include <string>
 #include <vector>
 
 #include "comparison.h"
-#include "metrics.h"
 #include "scene.h"
+#include "tolerance_study_record.h"
 
 namespace fibrecheck {
 
@@ -45,32 +44,6 @@ struct ToleranceStudyOptions {
   bool quiet = false;
 };
 
-struct TolerancePoint {
-  std::string method;    ///< "seed 0.5", "auto", "accelerated", "reference"
-  double parameter = 0;  ///< t_d (mm) for the iterative rules, K for the reference
-  int slices = 0;
-  double time_s = 0;
-  long iterations = 0;
-  std::string status;
-  Errors errors;
-  bool pareto = false;  ///< on its method's Pareto front of error against time
-};
-
-struct SpeedUp {
-  double error_level = 0;
-  double iterative_time_s = NAN, reference_time_s = NAN;
-  std::string iterative_method;  ///< the fastest iterative run that reaches the level
-  double speedup() const { return reference_time_s / iterative_time_s; }
-};
-
-struct ToleranceStudyScene {
-  std::string scene;
-  std::string truth;  ///< "reference_continuous" or "reference_slices"
-  double truth_error_estimate = -1.0;
-  std::vector<TolerancePoint> points;
-  std::vector<SpeedUp> speedups;
-};
-
 std::vector<ToleranceStudyScene> run_tolerance_study(const std::vector<Scene>& scenes,
                                                      const ToleranceStudyOptions& options,
                                                      const Solvers& solvers,
@@ -79,7 +52,5 @@ std::vector<ToleranceStudyScene> run_tolerance_study(const std::vector<Scene>& s
 /// Marks each method's Pareto front and fills the speed-ups at `levels` (NaN where no run of a
 /// kind reaches a level).
 void pareto_and_speedups(ToleranceStudyScene& scene, const std::vector<double>& levels);
-
-nlohmann::json to_json(const ToleranceStudyScene& scene);
 
 }  // namespace fibrecheck

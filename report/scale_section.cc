@@ -1,0 +1,115 @@
+#include "scale_section.h"
+
+#include <algorithm>
+#include <map>
+#include <sstream>
+
+namespace fibrecheck {
+
+namespace {
+
+/// A series' name: "iterative, accelerated", "reference, 2 processes", "Siconos lemke".
+std::string series_name(const std::string& solver, const std::string& method, int processes) {
+  if (solver == "iterative") return "iterative, " + method;
+  if (solver == "fem")
+    return "reference, " + std::to_string(processes) + " process" + (processes == 1 ? "" : "es");
+  return "Siconos " + method;
+}
+
+std::string series_name(const ScalePoint& p) {
+  return series_name(p.solver, p.method, p.processes);
+}
+
+Table scale_table(const ScaleStudy& study) {
+  Table t;
+  t.label = "scale";
+  t.caption = "Cost against tow size (" + std::to_string(study.slices) + " slices, seed " +
+              std::to_string(study.seed) +
+              "): candidate and pushing contacts, iterations, time, time per iteration and peak "
+              "memory (for the reference, over all its processes per finite-element unknown); for "
+              "Siconos, its distance from the reference's answer.";
+  t.header = {"Fibres",    "Run",        "Status",           "Candidates",
+              "Active",    "Iterations", "Time (s)",         "ms/iteration",
+              "Peak (MB)", "kB/unknown", "Against reference"};
+  for (const ScalePoint& p : study.points) {
+    const bool iterative = p.solver != "fem";
+    const double unknowns = static_cast<double>(p.unknowns);
+    t.rows.push_back(
+        {std::to_string(p.fibres), series_name(p), p.status, std::to_string(p.candidates),
+         std::to_string(p.active), std::to_string(p.iterations), seconds(p.time_s),
+         iterative ? sci(p.ms_per_iteration()) : "–", fixed3(p.peak_memory_mb),
+         // The reference's peak over all its processes, per finite-element unknown.
+         unknowns > 0.0 ? fixed3(1024.0 * p.peak_memory_mb * p.processes / unknowns) : "–",
+         p.agreement >= 0.0 ? sci(p.agreement) : "–"});
+  }
+  return t;
+}
+
+/// "Time grows as fibres^a with a: …", each exponent named like its points (the reference's
+/// with their process count); empty without exponents.
+std::string exponents_sentence(const ScaleStudy& study) {
+  std::string exponents;
+  for (const ScaleExponent& e : study.exponents) {
+    int processes = 1;
+    for (const ScalePoint& p : study.points)
+      if (p.solver == e.solver && p.method == e.method) processes = p.processes;
+    std::ostringstream line;
+    line.precision(2);
+    line << std::fixed << series_name(e.solver, e.method, processes) << " " << e.time;
+    exponents += (exponents.empty() ? "" : "; ") + line.str();
+  }
+  return exponents.empty() ? "" : " Time grows as fibres^a with a: " + exponents + ".";
+}
+
+/// Converged runs' time against fibres (log-log), one series per solver and method.
+void time_figure(ReportPage& page, const ScaleStudy& study) {
+  std::vector<std::string> names;
+  std::map<std::string, std::ostringstream> rows;
+  for (const ScalePoint& p : study.points) {
+    if (p.status != "converged" || !(p.time_s > 0.0)) continue;
+    const std::string name = series_name(p);
+    if (std::find(names.begin(), names.end(), name) == names.end()) names.push_back(name);
+    rows[name] << p.fibres << " " << p.time_s << "\n";
+  }
+  std::vector<Gnuplot::Series> series;
+  std::string plot;
+  for (const std::string& name : names) {
+    const int k = static_cast<int>(series.size());
+    series.push_back({rows[name].str()});
+    plot += std::string(plot.empty() ? "" : ", ") + "@DATA" + std::to_string(k) +
+            "@ using 1:2 with linespoints pt " + std::to_string(5 + 2 * k) +
+            " ps 1.5 lw 2 title '" + name + "'";
+  }
+  if (plot.empty()) return;
+  page.figure("scale_time",
+              "Solver time against the number of fibres (log-log), converged runs only"
+              " (exponents in the table's caption).",
+              "set xlabel 'fibres'\nset ylabel 'time (s)'\nset logscale xy\nset format y "
+              "'10^{%L}'\nset key top left\nset grid\nset offsets graph 0.05, graph 0.05, "
+              "0, 0\nplot " +
+                  plot,
+              series);
+}
+
+}  // namespace
+
+void write_scale_section(ReportPage& page, const std::vector<ScaleStudy>& studies) {
+  if (studies.empty()) return;
+  page.section(
+      "Scale",
+      "Generated tows of growing size (fibrecheck study scale), each run its own process: the "
+      "iterative solver's rules, the reference under mpiexec and Siconos on the reference's "
+      "exported contact problem (Lemke's pivoting, projected Gauss-Seidel and a Newton method on "
+      "the linear complementarity problem). Time is the solver's own (without start-up and "
+      "files); peak memory is the process's (the largest process's under mpiexec; the program "
+      "links the finite-element libraries, about 150 MB of it). For the reference the iterations "
+      "are its outer iterations; its active-set passes are in its result files.");
+  for (const ScaleStudy& study : studies) {
+    Table t = scale_table(study);
+    t.caption += exponents_sentence(study);
+    page.table(t);
+    time_figure(page, study);
+  }
+}
+
+}  // namespace fibrecheck

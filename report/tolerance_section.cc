@@ -1,0 +1,128 @@
+#include "tolerance_section.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <sstream>
+
+#include "atomic_file.h"
+#include "csv_file.h"
+
+namespace fibrecheck {
+
+namespace {
+
+using TimesAndErrors = std::vector<std::pair<double, double>>;
+
+/// Per method, its converged runs with an error above zero as (time, worst error), and those on
+/// its Pareto front.
+struct MethodPoints {
+  std::map<std::string, TimesAndErrors> all, fronts;
+  double exact_reference_time = NAN;  ///< a reference that is its own truth: error zero
+};
+
+MethodPoints method_points(const ToleranceStudyScene& s) {
+  MethodPoints m;
+  for (const TolerancePoint& p : s.points) {
+    const double worst = p.errors.worst();
+    if (p.method == "reference" && worst == 0.0 && p.status == "converged")
+      m.exact_reference_time = p.time_s;
+    if (p.status == "converged" && worst > 0 && p.time_s > 0) {
+      m.all[p.method].push_back({p.time_s, worst});
+      if (p.pareto) m.fronts[p.method].push_back({p.time_s, worst});
+    }
+  }
+  return m;
+}
+
+std::string rows_of(const TimesAndErrors& list) {
+  std::ostringstream out;
+  for (const auto& [time, error] : list) out << time << " " << error << "\n";
+  return out.str();
+}
+
+/// Error against time on one scene: each method's runs as points, its front as a line.
+void error_against_time_figure(ReportPage& page, const ToleranceStudyScene& s) {
+  MethodPoints m = method_points(s);
+  std::vector<Gnuplot::Series> series;
+  std::ostringstream plot;
+  plot << "set logscale xy\nset xlabel 'run time (s)'\nset ylabel 'relative error (worst of "
+          "deflection, force, energy)'\nset format y '10^{%L}'\nset format x '10^{%L}'\nset key "
+          "outside right top\nset grid\n";
+  if (std::isfinite(m.exact_reference_time))
+    plot << "set arrow from " << m.exact_reference_time << ", graph 0 to " << m.exact_reference_time
+         << ", graph 1 nohead dt 2 lw 2 lc rgb '#56b4e9'\nset label 'reference (exact: it is "
+            "the truth)' at "
+         << m.exact_reference_time << ", graph 0.95 right offset -0.5, 0\n";
+  plot << "plot ";
+  int k = 0, colour = 1;
+  const int types[] = {7, 5, 9, 11, 13, 15};
+  for (auto& [method, list] : m.all) {
+    TimesAndErrors& front = m.fronts[method];
+    std::sort(front.begin(), front.end());
+    series.push_back({rows_of(list)});
+    series.push_back({front.empty() ? "nan nan\n" : rows_of(front)});
+    plot << (k ? ", " : "") << "@DATA" << k << "@ using 1:2 with points pt "
+         << types[(colour - 1) % 6] << " ps 1.2 lc " << colour << " title '" << method << "', @DATA"
+         << k + 1 << "@ using 1:2 with lines lw 2 lc " << colour << " notitle";
+    k += 2;
+    ++colour;
+  }
+  if (k == 0) return;
+  page.figure("error_vs_time_" + file_name_slug(s.scene),
+              "Relative error against run time on " + s.scene +
+                  ": every converged run of each update rule of the iterative method (overlap "
+                  "tolerances and slice counts) and of the reference (refinements); the lines "
+                  "join each method's Pareto front.",
+              plot.str(), series);
+}
+
+Table speedup_table() {
+  Table t;
+  t.label = "speedup";
+  t.caption =
+      "Speed-up of the iterative method over the implicit reference at equal error: the "
+      "fastest converged run of each that reaches the error level (worst of deflection, "
+      "force and energy).";
+  t.header = {"Scene",         "Error level",   "Iterative rule",
+              "Iterative (s)", "Reference (s)", "Speed-up"};
+  return t;
+}
+
+}  // namespace
+
+void write_tolerance_section(ReportPage& page, const std::vector<ToleranceStudyScene>& studies) {
+  if (studies.empty()) return;
+  page.section("Accuracy against run time",
+               "Each update rule was run at overlap tolerances t_d over several decades, and the "
+               "reference's continuous line contact at several refinements; each point is the "
+               "worst of its deflection, force and energy errors against the ground truth. The "
+               "speed-up at equal error compares the fastest run of each kind that reaches an "
+               "error level.");
+  Table t = speedup_table();
+  std::vector<std::vector<std::string>> rows, points;
+  for (const ToleranceStudyScene& s : studies) {
+    for (const SpeedUp& u : s.speedups) {
+      const double speedup = u.speedup();
+      t.rows.push_back({s.scene, sci(u.error_level),
+                        u.iterative_method.empty() ? "–" : u.iterative_method,
+                        seconds(u.iterative_time_s), seconds(u.reference_time_s),
+                        std::isfinite(speedup) ? seconds(speedup) : "not reached"});
+      rows.push_back({s.scene, cell(u.error_level), cell(u.iterative_time_s),
+                      cell(u.reference_time_s), cell(speedup)});
+    }
+    for (const TolerancePoint& p : s.points)
+      points.push_back({s.scene, p.method, cell(p.parameter), cell(p.time_s),
+                        std::to_string(p.iterations), p.status, cell(p.errors.worst())});
+    error_against_time_figure(page, s);
+  }
+  page.table(t);
+  page.summary().headline += "\n" + markdown(t, page.summary().tables);
+  page.csv("speedup", {"scene", "error_level", "iterative_time_s", "reference_time_s", "speedup"},
+           rows);
+  page.csv("tolerance_study",
+           {"scene", "method", "parameter", "time_s", "iterations", "status", "worst_error"},
+           points);
+}
+
+}  // namespace fibrecheck

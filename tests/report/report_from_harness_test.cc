@@ -1,0 +1,226 @@
+// The report from the harness's own records: a small real run of every study — a comparison of
+// two crossing fibres, a slice study of the parallel fibres, a tolerance and a stability study of
+// the crossing (and one scene of the extreme catalogue), a compaction study of a generated 7-fibre
+// tow with friction, and a scale study of a 7-fibre tow run as processes of the fibrecheck
+// program — read back by the report. The iterative solver stands in for the reference, so that
+// this builds without the finite-element stack. A field the harness writes under a name the report
+// does not read makes the report refuse the data; the tables carry the numbers the studies
+// returned.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "atomic_file.h"
+#include "compaction_study.h"
+#include "comparison.h"
+#include "input_error.h"
+#include "iterative_solver.h"
+#include "report_data.h"
+#include "report_writer.h"
+#include "scale_study_record.h"
+#include "slice_study.h"
+#include "stability_study.h"
+#include "tables.h"
+#include "tolerance_study.h"
+#include "tow_generator.h"
+
+namespace fibrecheck {
+namespace {
+
+namespace fs = std::filesystem;
+
+const std::string kScenes = FIBRECHECK_SCENES_DIR;
+
+std::string slurp(const fs::path& path) {
+  std::stringstream s;
+  s << std::ifstream(path).rdbuf();
+  return s.str();
+}
+
+Result iterative(const Scene& scene) {
+  return solve_iteratively(scene, SolverOptions::from_scene(scene));
+}
+
+/// The stand-in reference: the iterative solver as the scene says.
+Result reference(const Scene& scene) {
+  Result r = iterative(scene);
+  r.solver = "fem";
+  return r;
+}
+
+Solvers stand_in_solvers() {
+  Solvers s;
+  s.iterative = iterative;
+  s.reference_slices = reference;
+  s.reference_continuous = reference;
+  s.reference_refined = [](const Scene& scene, int K) {
+    Scene refined = scene;
+    refined.contact.slices = scene.contact.slices << K;
+    return reference(refined);
+  };
+  return s;
+}
+
+/// What the studies returned, for the tables to be checked against.
+struct HarnessRun {
+  std::vector<SliceStudyScene> slices;
+  std::vector<ToleranceStudyScene> tolerance;
+  std::vector<CompactionStudyScene> compaction;
+  ScaleStudy scale;
+};
+
+/// Every study, small, into `folder`.
+HarnessRun run_harness(const fs::path& folder) {
+  const Solvers solvers = stand_in_solvers();
+  const Scene crossing = read_scene(kScenes + "/two_fibres_crossing.json");
+  write_comparison((folder / "compare" / crossing.name).string(), crossing,
+                   compare_scene(crossing, solvers));
+  HarnessRun run;
+  SliceStudyOptions slices;
+  slices.slices = {2, 4, 8};
+  slices.quiet = true;
+  run.slices = run_slice_study({read_scene(kScenes + "/parallel_fibres.json")}, slices, solvers,
+                               (folder / "study" / "slices").string());
+  ToleranceStudyOptions tolerance;
+  tolerance.tolerances = {1e-3, 1e-5};
+  tolerance.slice_factors = {1};
+  tolerance.refinements = {0};
+  tolerance.quiet = true;
+  run.tolerance = run_tolerance_study({crossing}, tolerance, solvers,
+                                      (folder / "study" / "tolerance").string());
+  StabilityStudyOptions stability;
+  stability.fractions = {0.5, 1.5};
+  stability.stiffness_ratios = {1, 1e3};
+  stability.max_iterations = 2000;
+  stability.quiet = true;
+  run_stability_study({crossing, read_scene(kScenes + "/extreme/stiffness_ratio_1e9.json")},
+                      stability, solvers, (folder / "study" / "stability").string());
+  TowOptions tow;
+  tow.fibres = 7, tow.slices = 10, tow.seed = 2, tow.volume_fraction = 0.35;
+  tow.steps = 3, tow.compaction = 0.75, tow.friction = 0.2;
+  CompactionStudyOptions compaction;
+  compaction.sections = {1};
+  compaction.quiet = true;
+  run.compaction = run_compaction_study({generate_tow(tow)}, compaction, solvers,
+                                        (folder / "study" / "compaction").string());
+  const fs::path scale = folder / "study" / "scale";
+  const std::string command = std::string("'") + FIBRECHECK_BINARY +
+                              "' study scale --fibres 7 --slices 10 --rules accelerated "
+                              "--reference-fibres 0 --peer-fibres 0 --processes 1 -q --out '" +
+                              scale.string() + "'";
+  EXPECT_EQ(std::system(command.c_str()), 0) << command;
+  std::ifstream in(scale / "scale_study.json");
+  run.scale = nlohmann::json::parse(in).get<ScaleStudy>();
+  return run;
+}
+
+class ReportFromHarness : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    // Its own folder: ctest runs each test of the suite as a process of its own, side by side.
+    folder_ =
+        new fs::path(::testing::TempDir() + "report_from_harness_" + std::to_string(::getpid()));
+    fs::remove_all(*folder_);
+    run_ = new HarnessRun(run_harness(*folder_ / "data"));
+  }
+  static void TearDownTestSuite() {
+    fs::remove_all(*folder_);
+    delete run_;
+    delete folder_;
+  }
+  static fs::path* folder_;
+  static HarnessRun* run_;
+};
+
+fs::path* ReportFromHarness::folder_ = nullptr;
+HarnessRun* ReportFromHarness::run_ = nullptr;
+
+TEST_F(ReportFromHarness, EveryStudyIsReadAndReported) {
+  const ReportData data = read_report_data({(*folder_ / "data").string()});
+  EXPECT_EQ(data.comparisons.size(), 1u);
+  EXPECT_EQ(data.slice_studies.size(), 1u);
+  EXPECT_EQ(data.tolerance_studies.size(), 1u);
+  EXPECT_EQ(data.stability_studies.size(), 2u);
+  EXPECT_EQ(data.compaction_studies.size(), 1u);
+  ASSERT_EQ(data.scale_studies.size(), 1u);
+  const fs::path out = *folder_ / "report";
+  const ReportSummary summary = write_report(data, out.string());
+  // Comparison, slices, speed-up, step sweep, stiffness, catalogue, compaction fits and
+  // agreement, scale.
+  EXPECT_EQ(summary.tables, 9);
+  EXPECT_TRUE(summary.missing.empty()) << summary.missing.front();
+  const std::string md = slurp(out / "report.md");
+  for (const char* section : {"## Accuracy on each scene",
+                              "## Accuracy against the number of "
+                              "slices",
+                              "## Accuracy against run time", "## Stability of the force update",
+                              "## Compaction", "## Scale"})
+    EXPECT_NE(md.find(section), std::string::npos) << section;
+  // The figures of the compaction study, its kept state at step 1 included, and of the scale
+  // study.
+  const std::string tow = file_name_slug(run_->compaction.at(0).scene);
+  for (const std::string& figure : std::vector<std::string>{
+           "compaction_" + tow, "compaction_energy_" + tow, "compaction_section_" + tow + "_step1",
+           "compaction_section_" + tow + "_step3", "scale_time", "slices_parallel_fibres",
+           "error_vs_time_two_fibres_crossing", "stability_two_fibres_crossing"})
+    EXPECT_TRUE(fs::exists(out / "figures" / (figure + ".png"))) << figure;
+}
+
+TEST_F(ReportFromHarness, TheTablesHoldWhatTheStudiesReturned) {
+  const fs::path out = *folder_ / "report_tables";
+  write_report(read_report_data({(*folder_ / "data").string()}), out.string());
+  const std::string md = slurp(out / "report.md");
+  const SliceStudyPoint& p = run_->slices.at(0).points.at(1);
+  EXPECT_NE(
+      md.find("| parallel_fibres | 4 | " + sci(p.errors.deflection) + " | " + sci(p.errors.force) +
+              " | " + sci(p.errors.energy) + " | " + std::to_string(p.iterations) + " |"),
+      std::string::npos);
+  const SpeedUp& u = run_->tolerance.at(0).speedups.at(0);
+  EXPECT_NE(md.find("| two_fibres_crossing | " + sci(u.error_level) + " | " +
+                    (u.iterative_method.empty() ? "–" : u.iterative_method) + " |"),
+            std::string::npos);
+  for (const CompactionRun& r : run_->compaction.at(0).runs) {
+    int steps = 0;
+    for (const CompactionPoint& q : r.points) steps += q.status == "converged" ? 1 : 0;
+    EXPECT_NE(md.find(" | " + r.status + " | " + std::to_string(steps) + "/" +
+                      std::to_string(r.points.size()) + " | "),
+              std::string::npos)
+        << r.label();
+  }
+  EXPECT_NE(md.find("| iterative, mu 0.2 (Coulomb) | "), std::string::npos);
+  EXPECT_NE(md.find("| iterative, mu 0.2 (seed rule) | "), std::string::npos);
+  ASSERT_EQ(run_->scale.points.size(), 1u);
+  const ScalePoint& s = run_->scale.points.at(0);
+  EXPECT_NE(md.find("| 7 | iterative, " + s.method + " | " + s.status + " | " +
+                    std::to_string(s.candidates) + " | " + std::to_string(s.active) + " | " +
+                    std::to_string(s.iterations) + " |"),
+            std::string::npos);
+}
+
+TEST_F(ReportFromHarness, ARecordWithoutAFieldTheHarnessWritesIsRefused) {
+  // The compaction study's points without their pressure: not the harness's any more.
+  const fs::path copy = *folder_ / "renamed";
+  fs::remove_all(copy);
+  fs::create_directories(copy);
+  const fs::path file = *folder_ / "data" / "study" / "compaction" / "compaction_study.json";
+  nlohmann::json j = nlohmann::json::parse(slurp(file));
+  for (nlohmann::json& run : j[0]["runs"])
+    for (nlohmann::json& point : run["points"]) {
+      point["pressure"] = point["pressure_MPa"];
+      point.erase("pressure_MPa");
+    }
+  std::ofstream(copy / "compaction_study.json") << j.dump(1);
+  try {
+    read_report_data({copy.string()});
+    ADD_FAILURE() << "a record without pressure_MPa was read";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("pressure_MPa"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace fibrecheck
