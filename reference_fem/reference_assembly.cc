@@ -15,9 +15,11 @@ namespace fibrecheck {
 // friction its tangential blocks), from finite-element solutions.
 void ReferenceSolver::assemble_system() {
   dealii::TimerOutput::Scope scope(timer_, "assemble_system");
-  const std::vector<double> G = loads_and_influence();
+  std::vector<double> G = loads_and_influence();
   const std::vector<std::vector<ContactSide>> sides = assemble_compliance(G);
   if (mu_ > 0.0) assemble_frictional_problem(G, sides);
+  // The deformed contact assembles again about new normals on the same mesh.
+  if (detector_.geometry().deformed()) G_ = std::move(G);
 }
 
 // The displacements u0_ at every station under the scene's loads, and the influence matrices G_f

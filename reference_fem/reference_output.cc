@@ -5,6 +5,7 @@
 #include <filesystem>
 
 #include "contact_results.h"
+#include "deformed_test.h"
 #include "process_sums.h"
 #include "reference_solver_class.h"
 
@@ -39,6 +40,22 @@ void ReferenceSolver::output_results(Result& r) {
     end_state_ = SlipOrigins(contacts_, u_a, u_b, r);
   }
   r.walls = wall_results(contacts_, fibres_, scene_.walls);
+  r.geometry = to_string(scene_.contact.geometry);
+  r.geometric_updates = geometric_updates_;
+  // The seed's test on the final state; a crossing found off the deformed closest points is
+  // measured there on the fibres' displacements at the detection grid, interpolated.
+  const std::vector<double>& grid = detector_.grid();
+  r.deformed_test = deformed_test(
+      detector_, contacts_, u_a, u_b,
+      [&](int f, const std::vector<double>& s, std::vector<Eigen::Vector3d>& u) {
+        u.resize(s.size());
+        const int m = static_cast<int>(grid.size()) - 1;
+        for (std::size_t i = 0; i < s.size(); ++i) {
+          const int j = std::min(std::max(static_cast<int>(std::floor(s[i] * m)), 0), m - 1);
+          const double w = s[i] * m - j;
+          u[i] = (1.0 - w) * grid_u_[f][j] + w * grid_u_[f][j + 1];
+        }
+      });
   add_energies(r);
 }
 
@@ -107,7 +124,7 @@ void ReferenceSolver::measure_contacts(const std::vector<double>& u, Result& r,
     Contact& c = contacts_[k];
     u_a[k] = packed(u, c.a, station_a_[k]);
     if (c.kind != ContactKind::wall) u_b[k] = packed(u, c.b, station_b_[k]);
-    c.overlap = detector_.geometry().overlap_along_normal(c, u_a[k], u_b[k]);
+    c.overlap = detector_.geometry().overlap(c, u_a[k], u_b[k]);
     if (mu_ > 0.0) c.slip = c.tangential(c.relative(u_a[k], u_b[k]) - c.origin);
     r.max_overlap = std::max(r.max_overlap, c.overlap);
     if (c.force > 0.0) r.gap_force_residual = std::max(r.gap_force_residual, -c.overlap);

@@ -18,6 +18,7 @@ struct ReferenceTrouble {
   std::string why;
   bool non_finite = false;          ///< the finite-element solutions were not finite
   bool friction_unsettled = false;  ///< the frictional problem did not settle
+  bool normals_unsettled = false;   ///< deformed contact: the normals did not settle
 };
 
 /// How the reference's outer loop ended.

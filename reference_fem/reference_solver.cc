@@ -75,6 +75,7 @@ Result ReferenceSolver::run() {
     setup_system();
     assemble_system();
     solve();
+    if (detector_.geometry().deformed() && trouble_.why.empty()) follow_the_deformed_fibres();
     if (!trouble_.why.empty()) {
       end = OuterEnd::no_answer;
       break;
@@ -112,7 +113,10 @@ void ReferenceSolver::deform_under_scene_loads() {
 // again keeps its force, and a pushing contact stays a candidate.
 void ReferenceSolver::detect() {
   std::vector<Contact> found = detector_.detect(grid_u_);
-  carry_over(contacts_, found);
+  const std::vector<long> origin = carry_over(contacts_, found);
+  detector_.keep_crossing_places(grid_u_, found,
+                                 moved_crossings_.empty() ? contacts_ : moved_crossings_, origin);
+  moved_crossings_.clear();
   contacts_ = std::move(found);
   if (mu_ > 0.0) origins_.set(contacts_);
 }
@@ -268,8 +272,8 @@ void ReferenceSolver::hand_over_contact_problem(Status status) {
   options_.contact_problem(exported_);
 }
 
-// update_active_set: candidates again on the deformed fibres. Places and normals are those of the
-// undeformed fibres, so the answer stands unless a new candidate overlaps.
+// update_active_set: candidates again on the deformed fibres. The answer stands unless a new
+// candidate overlaps (or, on the deformed fibres, a crossing moved off its station).
 bool ReferenceSolver::update_active_set() {
   dealii::TimerOutput::Scope scope(timer_, "update_active_set");
   std::set<std::uint64_t> known;
@@ -282,14 +286,15 @@ bool ReferenceSolver::update_active_set() {
   detect();
   std::vector<Eigen::Vector3d> ua, ub;
   displacements_at_contacts(ua, ub);
-  bool unchanged = true;
+  bool unchanged = !remesh_;
+  remesh_ = false;
   pushing_.assign(contacts_.size(), 0);
   for (std::size_t k = 0; k < contacts_.size(); ++k) {
     const std::uint64_t key = contacts_[k].key();
     auto it = was_pushing.find(key);
     if (it != was_pushing.end()) pushing_[k] = it->second;
     if (known.count(key) == 0 &&
-        detector_.geometry().overlap_along_normal(contacts_[k], ua[k], ub[k]) > threshold_)
+        detector_.geometry().overlap(contacts_[k], ua[k], ub[k]) > threshold_)
       unchanged = false;
   }
   // Nothing new overlaps: the answer is the one just solved, on the candidates it was solved with.

@@ -72,6 +72,7 @@ class ReferenceSolver {
   void setup_system();
   void assemble_system();
   void solve();
+  void follow_the_deformed_fibres();
   bool update_active_set();
   void report_progress(int outer) const;
   void output_results(Result& r);
@@ -108,6 +109,11 @@ class ReferenceSolver {
   /// The problem just solved, with its answer, for options_.contact_problem.
   void keep_contact_problem(const std::vector<char>& excluded);
 
+  // Deformed contact (deformed_contact.cc).
+  double deformed_residual(const std::vector<Eigen::Vector3d>& u_a,
+                           const std::vector<Eigen::Vector3d>& u_b) const;
+  void assemble_about_normals();
+
   // The final state (reference_output.cc).
   FinalFields final_fields();
   void write_vtu() const;
@@ -139,6 +145,12 @@ class ReferenceSolver {
   std::string mesh_file_;
   std::unique_ptr<BeamModel> model_;
   std::vector<double> u0_;  ///< displacements at every station under the scene's loads
+  std::vector<double> G_;   ///< the influence matrices of the current mesh (deformed contact)
+  long geometric_updates_ = 0;
+  /// The contacts with the places their crossings moved to, for the next detection to keep.
+  std::vector<Contact> moved_crossings_;
+  bool remesh_ = false;  ///< deformed contact: a crossing moved off its station
+  int crossing_moves_ = 0;
   Eigen::VectorXd d0_, P_;
   /// W is sparse: two contacts interact only through a fibre they share.
   Eigen::SparseMatrix<double> W_;

@@ -79,9 +79,10 @@ bool replace_non_finite(Result& r) {
   auto scrub_vector = [&scrub](auto& v) {
     for (Eigen::Index i = 0; i < v.size(); ++i) scrub(v[i]);
   };
-  for (double* x : {&r.strain_energy, &r.strain_energy_exact, &r.max_overlap, &r.gap_force_residual,
-                    &r.c, &r.c_stable_limit, &r.axial_load_dropped, &r.max_deflection_over_radius,
-                    &r.max_slope, &r.wall_time_s})
+  for (double* x :
+       {&r.strain_energy, &r.strain_energy_exact, &r.max_overlap, &r.gap_force_residual, &r.c,
+        &r.c_stable_limit, &r.axial_load_dropped, &r.max_deflection_over_radius, &r.max_slope,
+        &r.wall_time_s, &r.deformed_test.gap_where_pushing, &r.deformed_test.overlap_where_free})
     scrub(*x);
   if (r.finite_elements) {
     scrub(r.finite_elements->complementarity_residual);
@@ -166,6 +167,10 @@ json result_to_json(const Result& r) {
   j["candidates"] = r.candidates;
   j["max_deflection_over_radius"] = r.max_deflection_over_radius;
   j["max_slope"] = r.max_slope;
+  j["geometry"] = r.geometry;
+  j["deformed_test"] = {{"gap_where_pushing", r.deformed_test.gap_where_pushing},
+                        {"overlap_where_free", r.deformed_test.overlap_where_free}};
+  j["geometric_updates"] = r.geometric_updates;
   if (r.finite_elements) {
     j["complementarity_residual"] = r.finite_elements->complementarity_residual;
     j["active_set_iterations"] = r.finite_elements->active_set_iterations;
@@ -267,6 +272,12 @@ Result result_from_json(const json& j, const std::string& source) {
     r.candidates = j.value("candidates", 0L);
     r.max_deflection_over_radius = j.value("max_deflection_over_radius", 0.0);
     r.max_slope = j.value("max_slope", 0.0);
+    r.geometry = j.value("geometry", std::string("linearised"));
+    r.geometric_updates = j.value("geometric_updates", 0L);
+    if (j.contains("deformed_test")) {
+      r.deformed_test.gap_where_pushing = j["deformed_test"].value("gap_where_pushing", 0.0);
+      r.deformed_test.overlap_where_free = j["deformed_test"].value("overlap_where_free", 0.0);
+    }
     if (j.contains("unknowns")) {
       FiniteElementFigures& figures = r.finite_elements.emplace();
       figures.complementarity_residual = j.value("complementarity_residual", 0.0);

@@ -112,6 +112,14 @@ struct FiniteElementFigures {
   double line_force_error_estimate = -1.0;
 };
 
+/// The seed's own test of an answer in the deformed configuration (§4.3.6 on Eq. 4.15), whatever
+/// contact model produced it: the largest |gap| between displaced centres at a contact that pushes
+/// and the largest overlap of displaced centres at a candidate that does not (mm).
+struct DeformedTest {
+  double gap_where_pushing = 0.0;
+  double overlap_where_free = 0.0;
+};
+
 /// How well a frictional state meets Coulomb's law (μ > 0): the largest slip at a sticking point
 /// (mm), the largest slip not along its friction force at a slipping point (mm, the part across F
 /// and any part against it), and the largest excess of |F| over μN (N).
@@ -131,8 +139,9 @@ struct FrictionFigures {
 /// The result of either solver (DESIGN §5); the harness cannot tell the solvers apart.
 struct Result {
   std::string scene;
-  std::string solver;  ///< "iterative" | "fem"
-  std::string rule;    ///< update rule (iterative) or method (fem)
+  std::string solver;                 ///< "iterative" | "fem"
+  std::string rule;                   ///< update rule (iterative) or method (fem)
+  std::string geometry = "deformed";  ///< the contact model: "deformed" | "linearised"
   Status status = Status::max_iterations;
   Criterion criterion = Criterion::max_iterations;
   std::string message;
@@ -152,6 +161,10 @@ struct Result {
   /// fibre's radius and the largest slope (rad) of any fibre, from the result's samples.
   double max_deflection_over_radius = 0.0;
   double max_slope = 0.0;
+  DeformedTest deformed_test;
+  /// Deformed contact: how often the normals (and crossings) were made to follow the displaced
+  /// centres between linearised problems (the reference: its exact solves beyond the first).
+  long geometric_updates = 0;
   /// Present in results of the finite-element reference.
   std::optional<FiniteElementFigures> finite_elements;
   /// Present when the scene has friction (μ > 0).

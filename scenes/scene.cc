@@ -102,6 +102,10 @@ double Scene::overlap_tolerance() const {
   return std::isfinite(smallest) ? 1e-5 * smallest : 1e-7;
 }
 
+const char* to_string(ContactGeometryModel model) {
+  return model == ContactGeometryModel::deformed ? "deformed" : "linearised";
+}
+
 const char* to_string(FrictionModel model) {
   return model == FrictionModel::seed ? "seed" : "coulomb";
 }
@@ -173,6 +177,16 @@ Scene scene_from_json(const json& document, const std::string& source) {
         c.friction_model = FrictionModel::seed;
       else
         r.fail(r.field("friction_model"), "must be \"coulomb\" or \"seed\", got \"" + model + "\"");
+    }
+    if (r.has("geometry")) {
+      const std::string model = r.string("geometry");
+      if (model == "deformed")
+        c.geometry = ContactGeometryModel::deformed;
+      else if (model == "linearised")
+        c.geometry = ContactGeometryModel::linearised;
+      else
+        r.fail(r.field("geometry"),
+               "must be \"deformed\" or \"linearised\", got \"" + model + "\"");
     }
     c.parallel_angle_deg = r.number("parallel_angle_deg", c.parallel_angle_deg);
     if (!(c.parallel_angle_deg > 0.0 && c.parallel_angle_deg < 90.0))
@@ -373,6 +387,7 @@ json scene_to_json(const Scene& scene) {
                   {"axis", vec(scene.contact.axis)},
                   {"friction", scene.contact.friction},
                   {"friction_model", to_string(scene.contact.friction_model)},
+                  {"geometry", to_string(scene.contact.geometry)},
                   {"parallel_angle_deg", scene.contact.parallel_angle_deg}};
   j["solver"] = {
       {"rule", to_string(scene.solver.rule)},
@@ -436,6 +451,12 @@ std::string scene_format_help() {
          "    friction_model              \"coulomb\" (stick/slip per load step) | \"seed\"\n"
          "                                (Eqs. 4.29-4.33 on the deformed centres)   default: \""
       << to_string(d.contact.friction_model)
+      << "\"\n"
+         "    geometry                    \"deformed\" (gap and normal from the displaced "
+         "centres,\n"
+         "                                Eqs. 4.14-4.15) | \"linearised\" (undeformed place and\n"
+         "                                normal, small deflections)   default: \""
+      << to_string(d.contact.geometry)
       << "\"\n"
          "    parallel_angle_deg          fibres within this angle of the axis are sliced as\n"
          "                                line contacts   default: "

@@ -44,12 +44,20 @@ struct WallSpec {
 /// deformed centres, its tangential part capped by μN (Eqs. 4.29–4.33).
 enum class FrictionModel { coulomb, seed };
 
+/// How a contact is measured (DESIGN §2): `deformed` — the seed's: at every iteration the gap and
+/// the force direction come from the displaced centres (Eqs. 4.14–4.15; a slice in its
+/// cross-section plane, a crossing at the closest points of the deformed fibres); `linearised` —
+/// the small-deflection contact: place and normal of the undeformed fibres, the overlap linear in
+/// the deflections.
+enum class ContactGeometryModel { deformed, linearised };
+
 /// Contact detection (seed §4.3.3). All defaults of the scene format live in these initialisers.
 struct ContactSettings {
   int slices = 50;                                  ///< cross-sections n along the tow axis
   Eigen::Vector3d axis = Eigen::Vector3d::UnitX();  ///< tow axis (unit after reading)
   double friction = 0.0;                            ///< Coulomb coefficient μ (Eq. 4.31)
   FrictionModel friction_model = FrictionModel::coulomb;
+  ContactGeometryModel geometry = ContactGeometryModel::deformed;
   /// Fibres within this angle of the tow axis are tow fibres: pairs of them touch along lines and
   /// are sliced; every other pair is a point contact (Eqs. 4.16–4.24).
   double parallel_angle_deg = 10.0;
@@ -58,7 +66,7 @@ struct ContactSettings {
 /// Force update and stopping (seed §4.3.2, §4.3.6).
 struct SolverSettings {
   UpdateRule rule = UpdateRule::accelerated;  ///< one of update_rules()
-  std::optional<double> c;  ///< step c of P' = P + c·d, N/mm (rule `seed` only)
+  std::optional<double> c;                    ///< step c of P' = P + c·d, N/mm (rule `seed` only)
   /// t_d, mm; default 1e-5 of the smallest fibre radius.
   std::optional<double> overlap_tolerance;
   double energy_tolerance = 0.0;  ///< t_U, N·mm; 0 switches the energy criterion off
@@ -99,6 +107,7 @@ struct Scene {
 
 const char* to_string(LoadKind kind);
 const char* to_string(FrictionModel model);
+const char* to_string(ContactGeometryModel model);
 
 /// Reads and validates a scene file. Throws InputError (file, field, reason) on any bad input.
 Scene read_scene(const std::string& path);

@@ -1,6 +1,7 @@
 #include "iterative_result.h"
 
 #include "contact_results.h"
+#include "deformed_test.h"
 #include "validity.h"
 
 namespace fibrecheck {
@@ -64,6 +65,13 @@ Result iterative_result(const Scene& scene, const SolverOptions& options,
                                state.u_b, mu);
   r.walls = wall_results(state.contacts, fibres, scene.walls);
   r.history = record.history;
+  r.geometry = to_string(scene.contact.geometry);
+  r.geometric_updates = record.geometric_updates;
+  r.deformed_test =
+      deformed_test(detector, state.contacts, state.u_a, state.u_b,
+                    [&](int f, const std::vector<double>& s, std::vector<Eigen::Vector3d>& u) {
+                      superposition.fibre_field(f, state.force_on_a, true, s, u);
+                    });
   assess_validity(r, fibres);
   r.status = record.termination.status;
   r.criterion = record.termination.criterion;

@@ -19,6 +19,7 @@ struct IterationRecord {
   double step = 0.0;        ///< c, N/mm
   double lambda_max = 0.0;  ///< of the operator the step acted on
   long tresca_updates = 0;
+  long geometric_updates = 0;
   Residuals residuals;  ///< at the last evaluation
   std::vector<std::string> warnings;
   std::vector<HistoryEntry> history;

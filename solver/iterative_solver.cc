@@ -1,6 +1,7 @@
 #include "iterative_solver.h"
 
 #include <Eigen/Core>
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <memory>
@@ -90,7 +91,9 @@ class IterativeSolver {
   }
 
  private:
-  void evaluate();
+  void evaluate(bool follow_geometry);
+  void follow_crossings();
+  bool follows_the_fibres_now(double residual);
   void record(long iteration, long before);
   bool just_touching() const;
   bool must_measure_again();
@@ -128,9 +131,22 @@ class IterativeSolver {
   WorkingSet working_set_;
   bool use_working_set_;
   TrescaRadii tresca_;
+  /// Deformed contact under rules auto and accelerated: normals follow the displaced centres only
+  /// between the linearised problems (the seed's rule follows them at every iteration).
+  bool lagged_normals_;
+  long geometric_updates_ = 0;
+  static constexpr double kFollowFraction = 0.1;
+  double follow_below_ = INFINITY;   ///< the residual at which normals next follow the fibres
+  double follow_floor_ = 1.0;        ///< of t_d: the smallest residual an update waits for
+  double best_followed_ = INFINITY;  ///< the smallest residual an update left
+  static constexpr int kMaxCrossingMoves = 5;
+  int crossing_moves_ = 0;          ///< updates from within t_d that moved a crossing
+  bool crossings_moved_ = false;    ///< at the last evaluation
   FrictionFigures tresca_figures_;  ///< the inner problem's residuals at the last evaluation
   bool attached_ = false;  ///< the superposition and the step know the current contact list
   std::vector<std::vector<Eigen::Vector3d>> grid_u_, grid_u_at_detection_;
+  std::vector<int> crossing_fibres_;  ///< fibres with crossings (deformed contact)
+  std::vector<std::vector<Eigen::Vector3d>> crossing_grid_u_;  ///< theirs at the grid
   Residuals residuals_;
   double exact_energy_ = 0.0;
   double energy_ = NAN;  ///< Eq. 4.34 at the last evaluation, where it was computed
@@ -160,29 +176,33 @@ IterativeSolver::IterativeSolver(const Scene& scene, const SolverOptions& option
       working_set_(superposition_, fibres_, scene, detector_.geometry(), margin_,
                    options.overlap_tolerance),
       use_working_set_(mu_ == 0.0 && rule_->allows_working_set()),
-      tresca_(mu_, options.overlap_tolerance) {}
+      tresca_(mu_, options.overlap_tolerance),
+      lagged_normals_(scene.contact.geometry == ContactGeometryModel::deformed &&
+                      options.rule != UpdateRule::seed) {}
 
 Result IterativeSolver::run() {
   const auto start = Clock::now();
   detect_contacts();
   warnings_ = ambiguous_side_warnings(state_.contacts, fibres_, scene_.walls);
   if (auto why = find_unresolvable()) {
-    evaluate();
+    evaluate(true);
     return finish({Status::unresolvable, Criterion::unresolvable, *why}, 0, start);
   }
   Termination end;
   long iteration = 1, previous = 0;
   while (iteration <= options_.max_iterations) {
-    evaluate();
+    evaluate(!lagged_normals_);
     record(iteration, previous);
     previous = iteration;
+    // Under lagged normals the criteria judge the state right after its normals followed it.
+    const bool judged = !lagged_normals_ || follows_the_fibres_now(watched_residual());
     const double residual = watched_residual();
     if (!std::isfinite(residual) || !std::isfinite(exact_energy_)) {
       end = {Status::diverged, Criterion::non_finite, "non-finite forces or displacements"};
       break;
     }
-    remember_best(residual);
-    if (just_touching()) {
+    if (judged) remember_best(residual);
+    if (judged && just_touching()) {
       if (!must_measure_again()) {
         end = {Status::converged, Criterion::contact, ""};
         break;
@@ -216,13 +236,42 @@ Result IterativeSolver::run() {
 
 // The deformed fibres under the current forces (superposition, §4.3.1) and every contact's
 // overlap on them (Eqs. 4.14–4.15), with the residuals the criteria watch.
-void IterativeSolver::evaluate() {
+void IterativeSolver::evaluate(bool follow_geometry) {
   if (!state_.forces_gathered) state_.gather_forces();
+  const bool deformed = detector_.geometry().deformed() && follow_geometry;
+  crossings_moved_ = false;
+  if (deformed && detector_.point_search() &&
+      (!lagged_normals_ || crossing_moves_ < kMaxCrossingMoves))
+    follow_crossings();
   superposition_.contact_displacements(state_.contacts, state_.force_on_a, true, state_.u_a,
                                        state_.u_b, &exact_energy_);
-  detector_.geometry().measure(state_.contacts, state_.u_a, state_.u_b, coulomb_);
+  detector_.geometry().measure(state_.contacts, state_.u_a, state_.u_b, coulomb_, deformed);
   residuals_ = measure_residuals(state_.contacts);
   if (coulomb_) tresca_figures_ = tresca_figures(state_.contacts, state_.bound);
+}
+
+// Deformed contact: each crossing steps towards the closest points of the deformed fibres
+// (Eqs. 4.16–4.24 on their tangent lines where it acts), and its load point with it, where they
+// come closer by more than a tenth of t_d.
+void IterativeSolver::follow_crossings() {
+  crossing_fibres_.clear();
+  for (const Contact& c : state_.contacts)
+    if (c.kind == ContactKind::point)
+      crossing_fibres_.push_back(c.a), crossing_fibres_.push_back(c.b);
+  if (crossing_fibres_.empty()) return;
+  std::sort(crossing_fibres_.begin(), crossing_fibres_.end());
+  crossing_fibres_.erase(std::unique(crossing_fibres_.begin(), crossing_fibres_.end()),
+                         crossing_fibres_.end());
+  crossing_grid_u_.resize(fibres_.size());
+  for (int f : crossing_fibres_)
+    superposition_.fibre_field(f, state_.force_on_a, true, detector_.grid(), crossing_grid_u_[f]);
+  superposition_.contact_displacements(state_.contacts, state_.force_on_a, true, state_.u_a,
+                                       state_.u_b);
+  if (!detector_.follow_crossings(crossing_grid_u_, state_.contacts, state_.u_a, state_.u_b,
+                                  0.1 * options_.overlap_tolerance))
+    return;
+  superposition_.move_points(state_.contacts, crossing_fibres_);
+  crossings_moved_ = true;
 }
 
 // The strain energy (Eq. 4.34) where the energy criterion or the history needs it.
@@ -267,6 +316,37 @@ bool IterativeSolver::must_measure_again() {
   return false;
 }
 
+// Rules auto and accelerated solve the deformed contact as a sequence of problems, each linearised
+// about the normals (and crossings) of the configuration the one before left: the projected
+// iteration on the deformed gaps themselves cycles on compacted tows, where fibres slide round
+// each other. Normals and crossings follow the displaced centres once the linearised problem's
+// residual has fallen below a tenth of what the last update left, or below t_d (less, down to a
+// hundredth, after updates from there that left more); the contact criterion is judged right
+// after an update, on the normals the state's own forces give. True when they followed (the
+// residuals are then those after the update).
+bool IterativeSolver::follows_the_fibres_now(double residual) {
+  if (!lagged_normals_) return false;
+  const double t = options_.overlap_tolerance;
+  if (!std::isfinite(follow_below_)) follow_below_ = std::max(kFollowFraction * residual, t);
+  if (!(residual <= follow_below_)) return false;
+  evaluate(true);
+  ++geometric_updates_;
+  // Crossings move at most kMaxCrossingMoves times from a state within t_d: where the kinks'
+  // ambiguity exceeds t_d they would move from side to side for ever.
+  if (crossings_moved_ && residual < t) ++crossing_moves_;
+  state_.forces_gathered = false;
+  evaluate(false);
+  const double after = watched_residual();
+  // An update from within t_d that leaves more than t_d: the next one waits for a smaller
+  // residual, so that the normals' own change, not the linearised problem's, decides.
+  if (residual < t && !(after < t)) follow_floor_ = std::max(0.5 * follow_floor_, 0.01);
+  // Progress of the sequence is judged by what each update leaves: a new best starts the
+  // divergence monitor's watch afresh.
+  if (after < best_followed_) best_followed_ = after, divergence_.reset();
+  follow_below_ = std::max(kFollowFraction * after, follow_floor_ * t);
+  return true;
+}
+
 std::optional<Termination> IterativeSolver::diverging(long iteration, double residual) {
   const auto verdict = divergence_.observe(iteration, residual);
   if (verdict == DivergenceMonitor::Verdict::fine) return std::nullopt;
@@ -290,7 +370,8 @@ long IterativeSolver::update(long iteration) {
   context.seed_friction = seed_friction_;
   context.geometry = &detector_.geometry();
   context.lambda_max = lambda_max_;
-  context.tolerance = options_.overlap_tolerance;
+  context.tolerance = lagged_normals_ ? std::min(options_.overlap_tolerance, follow_below_)
+                                      : options_.overlap_tolerance;
   context.max_products = options_.max_iterations - iteration;
   const long work = rule_->update(state_, context);
   if (working_set_.active() && working_set_.due()) working_set_.revise(state_);
@@ -324,6 +405,16 @@ void IterativeSolver::detect_contacts() {
   compute_grid();
   std::vector<Contact> found = detector_.detect(grid_u_);
   const std::vector<long> origin = carry_over(state_.contacts, found);
+  detector_.keep_crossing_places(grid_u_, found, state_.contacts, origin);
+  // Under lagged normals a contact found again keeps the normal of its linearised problem.
+  if (lagged_normals_)
+    for (std::size_t i = 0; i < found.size(); ++i)
+      if (origin[i] >= 0) {
+        const Contact& before = state_.contacts[static_cast<std::size_t>(origin[i])];
+        found[i].normal = before.normal;
+        found[i].tangent = before.tangent;
+        found[i].tangents = before.tangents;
+      }
   bool unchanged = !state_.contacts.empty() && found.size() == state_.contacts.size();
   for (std::size_t i = 0; unchanged && i < origin.size(); ++i)
     unchanged = origin[i] == static_cast<long>(i);
@@ -379,7 +470,7 @@ std::optional<Termination> IterativeSolver::detect_again() {
   detect_contacts();
   const auto why = find_unresolvable();
   if (!why) return std::nullopt;
-  evaluate();
+  evaluate(true);
   return Termination{Status::unresolvable, Criterion::unresolvable, *why};
 }
 
@@ -402,7 +493,7 @@ void IterativeSolver::restore_best() {
     state_.contacts[k].friction = best_friction_[k];
   }
   state_.forces_gathered = false;
-  evaluate();
+  evaluate(true);
 }
 
 void IterativeSolver::report_progress(long iteration, Clock::time_point start) {
@@ -436,6 +527,7 @@ Result IterativeSolver::finish(const Termination& end, long iterations, Clock::t
   record.step = step_;
   record.lambda_max = lambda_max_;
   record.tresca_updates = tresca_.updates();
+  record.geometric_updates = geometric_updates_;
   record.residuals = residuals_;
   record.warnings = warnings_;
   record.history = history_;

@@ -74,6 +74,21 @@ void Superposition::attach(const std::vector<Contact>& contacts) {
   }
 }
 
+void Superposition::move_points(const std::vector<Contact>& contacts,
+                                const std::vector<int>& fibres) {
+  for (int f : fibres) {
+    std::vector<Slot>& list = slots_[f];
+    for (Slot& slot : list) {
+      if (slot.contact < 0) continue;
+      const Contact& k = contacts[slot.contact];
+      slot.a = (slot.sign > 0 ? k.s_a : k.s_b) * fibres_[f].length;
+    }
+    std::sort(list.begin(), list.end(), [](const Slot& x, const Slot& y) {
+      return x.a < y.a || (x.a == y.a && x.contact < y.contact);
+    });
+  }
+}
+
 // Inline: it is the first half of the inner loop of every evaluation.
 inline void Superposition::load_components(int fibre,
                                            const std::vector<Eigen::Vector3d>& force_on_a,

@@ -19,6 +19,9 @@ class Superposition {
 
   /// Registers the contacts' load points on their fibres (call when the contact list changes).
   void attach(const std::vector<Contact>& contacts);
+  /// The load points of the attached contacts on `fibres` moved (crossings following the deformed
+  /// fibres): their places are read again from `contacts`, the same list as attached.
+  void move_points(const std::vector<Contact>& contacts, const std::vector<int>& fibres);
 
   /// Displacements (mm) of fibre A's and fibre B's centreline at every contact, under the contact
   /// forces `force_on_a` (what fibre A receives; B receives the opposite) and, if `external`, the

@@ -27,9 +27,13 @@ void WorkingSet::measure_candidates(const IterationState& state) {
   }
   candidate_superposition_.contact_displacements(candidates_, force_, true, u_a_, u_b_);
   overlap_.resize(candidates_.size());
+  const bool deformed = geometry_.deformed();
 #pragma omp parallel for schedule(static) if (n > 4096)
-  for (int i = 0; i < n; ++i)
-    overlap_[i] = geometry_.overlap_along_normal(candidates_[i], u_a_[i], u_b_[i]);
+  for (int i = 0; i < n; ++i) {
+    // On the deformed fibres a candidate that joins takes the normal of its displaced centres.
+    if (deformed && slot_[i] < 0) geometry_.follow(candidates_[i], u_a_[i], u_b_[i]);
+    overlap_[i] = geometry_.overlap(candidates_[i], u_a_[i], u_b_[i]);
+  }
 }
 
 bool WorkingSet::needed(const IterationState& state, int i, bool first) const {

@@ -1,6 +1,9 @@
 #pragma once
 
-// Scenes with known answers, built in code so that tests can vary their parameters.
+// Scenes with known answers, built in code so that tests can vary their parameters. Their closed
+// forms are those of small deflections: the scenes use the linearised contact (place and normal
+// of the undeformed fibres), whose answers they give exactly; the deformed contact has its own
+// closed forms (deformed_contact_ground_truths.h).
 
 #include <algorithm>
 #include <cmath>
@@ -42,6 +45,7 @@ inline FibreSpec fibre(const std::string& id, Eigen::Vector3d start, Eigen::Vect
 inline Scene crossing(double sa, double sb, double overlap, double ra = 0.01, double rb = 0.01,
                       double ea = 80000.0, double eb = 80000.0, double La = 1.0, double Lb = 1.0) {
   Scene s;
+  s.contact.geometry = ContactGeometryModel::linearised;
   s.name = "crossing";
   const double h = ra + rb - overlap;
   s.fibres.push_back(fibre("A", {0, 0, 0}, {La, 0, 0}, ra, ea));
@@ -55,6 +59,7 @@ inline Scene crossing(double sa, double sb, double overlap, double ra = 0.01, do
 /// station sits at mid-span: R = P − g/C(L/2) if g < P·C(L/2).
 inline Scene pressed_onto_wall(double P, double gap, int walls = 1) {
   Scene s;
+  s.contact.geometry = ContactGeometryModel::linearised;
   s.fibres.push_back(fibre("F", {0, 0, 0}, {1, 0, 0}));
   const char* ids[2] = {"floor", "second_floor"};
   for (int i = 0; i < walls; ++i) {
@@ -87,6 +92,7 @@ inline Scene loaded_crossing(double P) {
 /// Fibres A (along x) and B (along y) whose pinned supports at the origin overlap.
 inline Scene overlapping_supports() {
   Scene s;
+  s.contact.geometry = ContactGeometryModel::linearised;
   s.fibres.push_back(fibre("A", {0, 0, 0}, {1, 0, 0}));
   s.fibres.push_back(fibre("B", {0, 0, 0.015}, {0, 1, 0.015}));
   return s;
@@ -97,6 +103,7 @@ inline Scene overlapping_supports() {
 inline Scene parallel(double q, int slices, double ra = 0.01, double rb = 0.008,
                       double ea = 80000.0, double eb = 70000.0) {
   Scene s;
+  s.contact.geometry = ContactGeometryModel::linearised;
   s.name = "parallel";
   s.fibres.push_back(fibre("A", {0, 0, ra + rb}, {1, 0, ra + rb}, ra, ea));
   s.fibres.push_back(fibre("B", {0, 0, 0}, {1, 0, 0}, rb, eb));

@@ -19,7 +19,9 @@ ContactDetector::ContactDetector(const std::vector<Fibre>& fibres, const Scene& 
 
 ContactDetector::ContactDetector(const std::vector<Fibre>& fibres, const Scene& scene,
                                  double margin, LineQuadrature line)
-    : geometry_(fibres, scene.walls, scene.contact.axis), line_(std::move(line)), margin_(margin) {
+    : geometry_(fibres, scene.walls, scene.contact.axis, scene.contact.geometry),
+      line_(std::move(line)),
+      margin_(margin) {
   const Eigen::Vector3d& axis = geometry_.tow_axis();
   std::tie(g1_, g2_) = cross_section_axes(axis);
   const int m = std::max(scene.contact.slices, 20);
@@ -58,13 +60,110 @@ std::vector<Contact> ContactDetector::detect(
   if (point_pairs_possible_) detect_points(grid_u, contacts);
   if (walls()) detect_walls(grid_u, contacts);
   for (Contact& c : contacts) {
-    geometry_.place_on_undeformed(c);
-    c.overlap = geometry_.overlap_along_normal(c, interpolate(grid_u, c.a, c.s_a),
-                                               c.kind == ContactKind::wall
-                                                   ? Eigen::Vector3d::Zero().eval()
-                                                   : interpolate(grid_u, c.b, c.s_b));
+    const Eigen::Vector3d u_a = interpolate(grid_u, c.a, c.s_a);
+    const Eigen::Vector3d u_b = c.kind == ContactKind::wall ? Eigen::Vector3d::Zero().eval()
+                                                            : interpolate(grid_u, c.b, c.s_b);
+    geometry_.place(c, u_a, u_b);
+    c.overlap = geometry_.overlap(c, u_a, u_b);
+  }
+  if (geometry_.deformed()) {
+    // Crossings were placed where the chords cross; on the deformed fibres they move towards
+    // the closest points of the displaced fibres nearby, and are measured there.
+    for (Contact& c : contacts) {
+      if (c.kind != ContactKind::point) continue;
+      int steps = 0;
+      while (steps < kDetectionSteps && follow_crossing(grid_u, c, interpolate(grid_u, c.a, c.s_a),
+                                                        interpolate(grid_u, c.b, c.s_b)))
+        ++steps;
+      if (steps > 0) place_crossing(grid_u, c);
+    }
   }
   return contacts;
+}
+
+void ContactDetector::place_crossing(const std::vector<std::vector<Eigen::Vector3d>>& grid_u,
+                                     Contact& c) const {
+  const Eigen::Vector3d u_a = interpolate(grid_u, c.a, c.s_a);
+  const Eigen::Vector3d u_b = interpolate(grid_u, c.b, c.s_b);
+  geometry_.place_at(c, u_a, u_b);
+  c.overlap = geometry_.overlap(c, u_a, u_b);
+}
+
+void ContactDetector::keep_crossing_places(const std::vector<std::vector<Eigen::Vector3d>>& grid_u,
+                                           std::vector<Contact>& found,
+                                           const std::vector<Contact>& before,
+                                           const std::vector<long>& origin) const {
+  if (!geometry_.deformed()) return;
+  for (std::size_t i = 0; i < found.size(); ++i) {
+    if (found[i].kind != ContactKind::point || origin[i] < 0) continue;
+    const Contact& was = before[static_cast<std::size_t>(origin[i])];
+    found[i].s_a = was.s_a;
+    found[i].s_b = was.s_b;
+    place_crossing(grid_u, found[i]);
+  }
+}
+
+bool ContactDetector::follow_crossings(const std::vector<std::vector<Eigen::Vector3d>>& grid_u,
+                                       std::vector<Contact>& contacts,
+                                       const std::vector<Eigen::Vector3d>& u_a,
+                                       const std::vector<Eigen::Vector3d>& u_b, double gain) const {
+  bool moved = false;
+  for (std::size_t k = 0; k < contacts.size(); ++k)
+    if (contacts[k].kind == ContactKind::point)
+      moved |= follow_crossing(grid_u, contacts[k], u_a[k], u_b[k], gain);
+  return moved;
+}
+
+Eigen::Vector3d ContactDetector::deformed_tangent(
+    const std::vector<std::vector<Eigen::Vector3d>>& grid_u, int fibre, double s,
+    const Eigen::Vector3d& u) const {
+  const Fibre& f = geometry_.fibres()[fibre];
+  const double tie = 1e-12;
+  const auto right = std::upper_bound(grid_.begin(), grid_.end(), s + tie);
+  const auto left = std::lower_bound(grid_.begin(), grid_.end(), s - tie);
+  const std::size_t r = static_cast<std::size_t>(right - grid_.begin());
+  Eigen::Vector3d slope;
+  if (left == grid_.begin()) {
+    slope = (grid_u[fibre][r] - u) / (grid_[r] - s);
+  } else {
+    const std::size_t l = static_cast<std::size_t>(left - grid_.begin()) - 1;
+    const double h1 = s - grid_[l];
+    const Eigen::Vector3d m1 = (u - grid_u[fibre][l]) / h1;
+    if (right == grid_.end()) {
+      slope = m1;
+    } else {
+      const double h2 = grid_[r] - s;
+      const Eigen::Vector3d m2 = (grid_u[fibre][r] - u) / h2;
+      slope = (h2 * m1 + h1 * m2) / (h1 + h2);
+    }
+  }
+  return (f.end - f.start) + slope;
+}
+
+bool ContactDetector::follow_crossing(const std::vector<std::vector<Eigen::Vector3d>>& grid_u,
+                                      Contact& c, const Eigen::Vector3d& u_a,
+                                      const Eigen::Vector3d& u_b, double gain) const {
+  const Fibre& fa = geometry_.fibres()[c.a];
+  const Fibre& fb = geometry_.fibres()[c.b];
+  const Eigen::Vector3d d = fb.point(c.s_b) + u_b - (fa.point(c.s_a) + u_a);
+  const Eigen::Vector3d ta = deformed_tangent(grid_u, c.a, c.s_a, u_a);
+  const Eigen::Vector3d tb = deformed_tangent(grid_u, c.b, c.s_b, u_b);
+  // The tangent lines' closest points (Eqs. 4.22–4.23 on the lines): d + tb·δb − ta·δa ⟂ ta, tb.
+  const double aa = ta.squaredNorm(), bb = tb.squaredNorm(), ab = ta.dot(tb);
+  const double det = aa * bb - ab * ab;
+  if (!(det > 1e-12 * aa * bb)) return false;
+  const double ad = ta.dot(d), bd = tb.dot(d);
+  const double window = 2.0 / static_cast<double>(grid_.size() - 1);
+  const auto within = [window](double step, double s) {
+    return std::clamp(s + std::clamp(step, -window, window), 0.0, 1.0);
+  };
+  const double s_a = within((bb * ad - ab * bd) / det, c.s_a);
+  const double s_b = within((ab * ad - aa * bd) / det, c.s_b);
+  const double closer = d.norm() - (d + tb * (s_b - c.s_b) - ta * (s_a - c.s_a)).norm();
+  if (!(closer > std::max(gain, 1e-12 * (fa.radius + fb.radius)))) return false;
+  c.s_a = s_a;
+  c.s_b = s_b;
+  return true;
 }
 
 void ContactDetector::detect_lines(const std::vector<std::vector<Eigen::Vector3d>>& grid_u,

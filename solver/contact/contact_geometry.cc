@@ -7,8 +7,8 @@ namespace fibrecheck {
 
 ContactGeometry::ContactGeometry(const std::vector<Fibre>& fibres,
                                  const std::vector<WallSpec>& walls,
-                                 const Eigen::Vector3d& tow_axis)
-    : fibres_(fibres), walls_(walls), axis_(tow_axis.normalized()) {
+                                 const Eigen::Vector3d& tow_axis, ContactGeometryModel model)
+    : fibres_(fibres), walls_(walls), model_(model), axis_(tow_axis.normalized()) {
   g2_ = cross_section_axes(axis_).second;
 }
 
@@ -25,15 +25,28 @@ void ContactGeometry::set_tangents(Contact& c) const {
 }
 
 void ContactGeometry::place_on_undeformed(Contact& c) const {
-  place_normal(c);
+  place_normal(c, true);
   set_tangents(c);
 }
 
-void ContactGeometry::place_normal(Contact& c) const {
+void ContactGeometry::place(Contact& c, const Eigen::Vector3d& u_a,
+                            const Eigen::Vector3d& u_b) const {
+  place_on_undeformed(c);
+  if (deformed()) follow(c, u_a, u_b);
+}
+
+void ContactGeometry::place_at(Contact& c, const Eigen::Vector3d& u_a,
+                               const Eigen::Vector3d& u_b) const {
+  place_normal(c, false);
+  set_tangents(c);
+  if (deformed()) follow(c, u_a, u_b);
+}
+
+void ContactGeometry::place_normal(Contact& c, bool at_chords) const {
   if (c.kind == ContactKind::wall) return;  // the wall's normal, at its station
   const Fibre& fa = fibres_[c.a];
   const Fibre& fb = fibres_[c.b];
-  if (c.kind == ContactKind::point) {
+  if (c.kind == ContactKind::point && at_chords) {
     // Eqs. 4.16–4.24 on the straight chords.
     const ClosestPoints cp = segment_closest_points(fa.start, fa.end, fb.start, fb.end);
     c.s_a = cp.mu_a;
@@ -54,6 +67,13 @@ void ContactGeometry::place_normal(Contact& c) const {
   c.normal = n.normalized();
 }
 
+Eigen::Vector3d ContactGeometry::centre_difference(const Contact& c, const Eigen::Vector3d& u_a,
+                                                   const Eigen::Vector3d& u_b) const {
+  Eigen::Vector3d difference = fibres_[c.b].point(c.s_b) + u_b - (fibres_[c.a].point(c.s_a) + u_a);
+  if (c.kind == ContactKind::line) difference -= difference.dot(axis_) * axis_;
+  return difference;
+}
+
 double ContactGeometry::overlap_along_normal(const Contact& c, const Eigen::Vector3d& u_a,
                                              const Eigen::Vector3d& u_b) const {
   const Eigen::Vector3d ac = fibres_[c.a].point(c.s_a) + u_a;
@@ -64,28 +84,58 @@ double ContactGeometry::overlap_along_normal(const Contact& c, const Eigen::Vect
   return fibres_[c.a].radius + fibres_[c.b].radius - c.normal.dot(difference);
 }
 
+double ContactGeometry::overlap(const Contact& c, const Eigen::Vector3d& u_a,
+                                const Eigen::Vector3d& u_b) const {
+  if (!deformed() || c.kind == ContactKind::wall) return overlap_along_normal(c, u_a, u_b);
+  const double radii = fibres_[c.a].radius + fibres_[c.b].radius;
+  const double distance = centre_difference(c, u_a, u_b).norm();
+  if (distance < 0.5 * radii) return overlap_along_normal(c, u_a, u_b);
+  return radii - distance;
+}
+
+double ContactGeometry::deformed_gap(const Contact& c, const Eigen::Vector3d& u_a,
+                                     const Eigen::Vector3d& u_b) const {
+  if (c.kind == ContactKind::wall) return -overlap_along_normal(c, u_a, u_b);
+  return centre_difference(c, u_a, u_b).norm() - (fibres_[c.a].radius + fibres_[c.b].radius);
+}
+
 Eigen::Vector3d ContactGeometry::deformed_normal(const Contact& c, const Eigen::Vector3d& u_a,
                                                  const Eigen::Vector3d& u_b) const {
   if (c.kind == ContactKind::wall) return c.normal;
-  Eigen::Vector3d difference = fibres_[c.b].point(c.s_b) + u_b - (fibres_[c.a].point(c.s_a) + u_a);
-  if (c.kind == ContactKind::line) difference -= difference.dot(axis_) * axis_;
+  const Eigen::Vector3d difference = centre_difference(c, u_a, u_b);
   const double distance = difference.norm();
   return distance > 1e-12 * (fibres_[c.a].radius + fibres_[c.b].radius)
              ? Eigen::Vector3d(difference / distance)
              : c.normal;
 }
 
+void ContactGeometry::follow(Contact& c, const Eigen::Vector3d& u_a,
+                             const Eigen::Vector3d& u_b) const {
+  if (c.kind == ContactKind::wall) return;
+  const Eigen::Vector3d difference = centre_difference(c, u_a, u_b);
+  const double distance = difference.norm();
+  if (distance < 0.5 * (fibres_[c.a].radius + fibres_[c.b].radius)) return;
+  c.normal = difference / distance;
+  set_tangents(c);
+  c.friction = c.tangential(c.friction);
+}
+
 void ContactGeometry::measure(std::vector<Contact>& contacts,
                               const std::vector<Eigen::Vector3d>& u_a,
-                              const std::vector<Eigen::Vector3d>& u_b, bool slip) const {
+                              const std::vector<Eigen::Vector3d>& u_b, bool slip,
+                              bool follow_normals) const {
   const int count = static_cast<int>(contacts.size());
   Contact* const contact = contacts.data();
   const Eigen::Vector3d* const side_a = u_a.data();
   const Eigen::Vector3d* const side_b = u_b.data();
+  const bool follow_them = deformed() && follow_normals;
+  const bool linear = !follow_them;
 #pragma omp parallel for schedule(static) if (count > kParallelContacts)
   for (int k = 0; k < count; ++k) {
     Contact& c = contact[k];
-    c.overlap = overlap_along_normal(c, side_a[k], side_b[k]);
+    if (follow_them) follow(c, side_a[k], side_b[k]);
+    c.overlap =
+        linear ? overlap_along_normal(c, side_a[k], side_b[k]) : overlap(c, side_a[k], side_b[k]);
     if (slip) c.slip = c.tangential(c.relative(side_a[k], side_b[k]) - c.origin);
   }
 }

@@ -41,14 +41,16 @@ TEST(ConjugateGradientRule, ParallelFibresInAFewProducts) {
   }
 }
 
-// A compacted tow: the same equilibrium as the accelerated rule (both within t_d of it), every
-// contact just touching.
+// A compacted tow under the linearised contact, whose problem is one fixed quadratic programme:
+// the same equilibrium as the accelerated rule (both within t_d of it), every contact just
+// touching.
 TEST(ConjugateGradientRule, CompactedTowReachesTheAcceleratedRulesEquilibrium) {
   TowOptions tow;
   tow.fibres = 19;
   tow.slices = 40;
   tow.seed = 5;
   Scene s = generate_tow(tow);
+  s.contact.geometry = ContactGeometryModel::linearised;
   s.solver.rule = UpdateRule::accelerated;
   const Result accelerated = solve(s);
   s.solver.rule = UpdateRule::conjugate_gradient;

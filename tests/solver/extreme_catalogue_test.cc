@@ -7,6 +7,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
+
 #include "expected_outcome.h"
 #include "iterative_solver.h"
 #include "scene.h"
@@ -27,6 +30,23 @@ TEST_P(ExtremeCatalogue, IterativeSolverGivesTheExpectedOutcome) {
   if (r.status == Status::diverged) {
     EXPECT_LT(r.iterations, 1000) << r.message;
   }
+}
+
+// The same scene on the deformed fibres, whatever contact model it names: the status it expects,
+// no non-finite number, and a converged answer that passes the seed's own test (gaps at pushing
+// contacts and overlaps elsewhere within 1e-3 of the smallest radius, where t_d allows).
+TEST_P(ExtremeCatalogue, DeformedContactKeepsTheExpectedStatus) {
+  Scene scene = read_scene(testing::extreme_scene_path(GetParam()));
+  scene.contact.geometry = ContactGeometryModel::deformed;
+  const Result r = solve_iteratively(scene, SolverOptions::from_scene(scene));
+  EXPECT_EQ(to_string(r.status), expected_status(*scene.expected, "iterative")) << r.message;
+  EXPECT_EQ(testing::first_non_finite(r), "");
+  if (r.status != Status::converged) return;
+  double smallest = INFINITY;
+  for (const FibreSpec& f : scene.fibres) smallest = std::min(smallest, f.radius);
+  const double bound = std::max(1e-3 * smallest, 2.0 * scene.overlap_tolerance());
+  EXPECT_LE(r.deformed_test.gap_where_pushing, bound);
+  EXPECT_LE(r.deformed_test.overlap_where_free, bound);
 }
 
 INSTANTIATE_TEST_SUITE_P(Scenes, ExtremeCatalogue,

@@ -1,0 +1,96 @@
+// The deformed contact in the reference: a sequence of exact contact solves, each linearised about
+// the configuration of the reference's own finite-element fibres that the one before left.
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "reference_solver_class.h"
+
+namespace fibrecheck {
+
+namespace {
+
+/// Geometric updates a step may take before the reference says its normals did not settle.
+constexpr int kMaxGeometricUpdates = 200;
+/// New meshes a step may take for crossings that move. A crossing's own force kinks both fibres
+/// there, so that the closest points of the deformed centrelines lie a little to either side of
+/// it (by about the gap times the kink's angle): where that ambiguity exceeds the tolerance, the
+/// crossing would move from side to side for ever.
+constexpr int kMaxCrossingMoves = 5;
+/// A change of the unit normals below which the next solve would be the last one again.
+constexpr double kUnturned = 1e-12;
+
+}  // namespace
+
+// The seed's test on the contacts as they stand (Eq. 4.15): the largest |gap| of the displaced
+// centres where a contact pushes, and the largest overlap where none does (mm).
+double ReferenceSolver::deformed_residual(const std::vector<Eigen::Vector3d>& u_a,
+                                          const std::vector<Eigen::Vector3d>& u_b) const {
+  double residual = 0.0;
+  for (std::size_t k = 0; k < contacts_.size(); ++k) {
+    const double gap = detector_.geometry().deformed_gap(contacts_[k], u_a[k], u_b[k]);
+    residual = std::max(residual, contacts_[k].force > 0.0 ? std::fabs(gap) : -gap);
+  }
+  return residual;
+}
+
+// The overlaps d0 and the compliance W of the current candidates again, on the same mesh, about the
+// normals they have now: the stored influence matrices and loads' displacements, nothing solved
+// again.
+void ReferenceSolver::assemble_about_normals() {
+  dealii::TimerOutput::Scope scope(timer_, "assemble_system");
+  const std::vector<std::vector<ContactSide>> sides = assemble_compliance(G_);
+  if (mu_ > 0.0) assemble_frictional_problem(G_, sides);
+}
+
+// After an exact solve on given normals: the finite-element fibres under its forces, the normals
+// (and tangents, and the crossings' places) moved to their displaced centres, and the problem
+// linearised about them solved again, until the answer meets the seed's test in the deformed
+// configuration to 1e-3 of the scene's tolerance (or to the round-off of the finite elements, or
+// until the normals no longer turn and the residual left is the linearised solve's own). A
+// crossing whose centres would come closer by a tenth of the tolerance elsewhere needs a new mesh:
+// the outer loop takes it from there.
+void ReferenceSolver::follow_the_deformed_fibres() {
+  const double settled = std::max(threshold_, 1e-3 * tolerance_);
+  std::vector<Eigen::Vector3d> u_a, u_b;
+  double residual = INFINITY, before = INFINITY;
+  for (int update = 0; update < kMaxGeometricUpdates; ++update) {
+    deform();
+    displacements_at_contacts(u_a, u_b);
+    std::vector<Contact> moved = contacts_;
+    if (detector_.point_search() && crossing_moves_ < kMaxCrossingMoves &&
+        detector_.follow_crossings(grid_u_, moved, u_a, u_b, 0.1 * tolerance_)) {
+      ++crossing_moves_;
+      moved_crossings_ = std::move(moved);
+      remesh_ = true;
+      return;
+    }
+    residual = deformed_residual(u_a, u_b);
+    // Settled, or within t_d and no longer falling: the round-off of the finite elements.
+    if (residual <= settled || (residual < tolerance_ && residual > 0.5 * before)) return;
+    before = residual;
+    double turned = 0.0;
+    for (std::size_t k = 0; k < contacts_.size(); ++k) {
+      const Eigen::Vector3d normal = contacts_[k].normal;
+      detector_.geometry().follow(contacts_[k], u_a[k], u_b[k]);
+      turned = std::max(turned, (contacts_[k].normal - normal).norm());
+    }
+    // Normals that did not turn give the same solve again: what is left is that solve's own.
+    if (turned <= kUnturned) return;
+    ++geometric_updates_;
+    assemble_about_normals();
+    solve();
+    if (!trouble_.why.empty()) return;
+  }
+  std::ostringstream out;
+  out.precision(3);
+  out << "the normals of the deformed contact did not settle: after " << kMaxGeometricUpdates
+      << " exact solves, each linearised about the fibres the one before left, a contact still "
+         "pushes across (or overlaps by) "
+      << residual << " mm";
+  trouble_.why = out.str();
+  trouble_.normals_unsettled = true;
+}
+
+}  // namespace fibrecheck

@@ -1,0 +1,28 @@
+#pragma once
+
+#include <Eigen/Core>
+#include <functional>
+#include <vector>
+
+#include "contact.h"
+#include "contact_detection.h"
+#include "result.h"
+
+namespace fibrecheck {
+
+/// A fibre's displacements (mm) at sorted fractions of its length, from a solver's own beams.
+using FibreDisplacements =
+    std::function<void(int fibre, const std::vector<double>& s, std::vector<Eigen::Vector3d>& u)>;
+
+/// The seed's own test of a final state in the deformed configuration (Eq. 4.15, §4.3.6), whatever
+/// contact model produced it: every candidate's gap between displaced centres — a slice's in its
+/// cross-section plane, a crossing's at the closest points of the deformed fibres near where it
+/// acts (found on the polylines through the detection grid) — the largest |gap| where the
+/// contact pushes and the largest overlap where it does not. `u_a`, `u_b` are the displacements
+/// of each contact's two sides where it acts.
+DeformedTest deformed_test(const ContactDetector& detector, const std::vector<Contact>& contacts,
+                           const std::vector<Eigen::Vector3d>& u_a,
+                           const std::vector<Eigen::Vector3d>& u_b,
+                           const FibreDisplacements& displacements);
+
+}  // namespace fibrecheck
