@@ -31,8 +31,9 @@ bool needs_continuous_reference(const Scene& scene) {
 
 Comparison compare_results(const std::string& scene, const Result& user, const Result& converged,
                            const Result& slices, const std::optional<Result>& continuous,
-                           const std::string& reason) {
+                           const std::string& reason, const std::optional<Result>& other_geometry) {
   Comparison c;
+  c.other_geometry = other_geometry;
   c.scene = scene;
   c.user = user;
   c.converged = converged;
@@ -54,9 +55,26 @@ Comparison compare_results(const std::string& scene, const Result& user, const R
   c.iteration = measure_errors(user, slices, what);
   c.slicing = continuous ? measure_errors(slices, *continuous, what) : ErrorReport{};
   c.agreement = measure_errors(converged, slices, what);
+  if (other_geometry && other_geometry->status == Status::converged) {
+    const bool deformed = slices.geometry == "deformed";
+    c.geometry = measure_errors(deformed ? *other_geometry : slices,
+                                deformed ? slices : *other_geometry, what);
+  }
   if (continuous && continuous->finite_elements)
     c.truth_error_estimate = continuous->finite_elements->line_force_error_estimate;
   return c;
+}
+
+Scene in_other_geometry(const Scene& scene) {
+  Scene other = scene;
+  other.contact.geometry = scene.contact.geometry == ContactGeometryModel::deformed
+                               ? ContactGeometryModel::linearised
+                               : ContactGeometryModel::deformed;
+  return other;
+}
+
+std::string other_geometry_label(const Scene& scene) {
+  return std::string("reference_slices_") + to_string(in_other_geometry(scene).contact.geometry);
 }
 
 Result ground_truth(const Scene& scene, const Solvers& solvers) {
@@ -87,12 +105,14 @@ Comparison compare_scene(const Scene& scene, const Solvers& solvers,
   const Result converged = solvers.iterative(tight);
   say("the reference on the same slices");
   const Result slices = solvers.reference_slices(scene);
+  say("the reference on the same slices in the other contact geometry");
+  const Result other = solvers.reference_slices(in_other_geometry(scene));
   std::optional<Result> continuous;
   if (needs_continuous_reference(scene)) {
     say("the reference with continuous line contact (the ground truth)");
     continuous = solvers.reference_continuous(scene);
   }
-  return compare_results(scene.name, user, converged, slices, continuous);
+  return compare_results(scene.name, user, converged, slices, continuous, "", other);
 }
 
 namespace {
@@ -114,6 +134,13 @@ ComparisonRecord record_of(const Comparison& c,
             {"converged", summary_of(c.converged)},
             {"reference_slices", summary_of(c.slices)}};
   if (c.continuous) r.runs["reference_continuous"] = summary_of(*c.continuous);
+  if (c.other_geometry)
+    r.runs[std::string("reference_slices_") + c.other_geometry->geometry] =
+        summary_of(*c.other_geometry);
+  r.geometry_model = c.user.geometry;
+  r.geometry = c.other_geometry && c.other_geometry->status == Status::converged
+                   ? c.geometry.errors
+                   : Errors{NAN, NAN, NAN};
   r.rule = c.user.rule;
   r.c = c.user.c;
   r.ground_truth = c.continuous ? "reference_continuous" : "reference_slices";
@@ -146,14 +173,20 @@ void write_comparison(const std::string& folder, const Scene& scene, const Compa
   write_result((dir / "reference_slices.result.json").string(), c.slices);
   if (c.continuous)
     write_result((dir / "reference_continuous.result.json").string(), *c.continuous);
+  if (c.other_geometry) {
+    const std::string label = other_geometry_label(scene);
+    files.push_back({label, label + ".result.json"});
+    write_result((dir / (label + ".result.json")).string(), *c.other_geometry);
+  }
   write_file_atomically((dir / "compare.json").string(), to_json(c, files).dump(1) + "\n");
 }
 
 std::string comparison_table(const std::vector<Comparison>& comparisons) {
   std::ostringstream out;
   char line[512];
-  std::snprintf(line, sizeof line, "%-22s %-12s %9s %9s %9s  %9s %9s  %8s %8s\n", "scene", "rule",
-                "deflect.", "force", "energy", "iteration", "slicing", "user_s", "truth_s");
+  std::snprintf(line, sizeof line, "%-22s %-12s %9s %9s %9s  %9s %9s %9s  %8s %8s\n", "scene",
+                "rule", "deflect.", "force", "energy", "iteration", "slicing", "geometry", "user_s",
+                "truth_s");
   out << line;
   for (const Comparison& c : comparisons) {
     if (!c.comparable) {
@@ -162,10 +195,11 @@ std::string comparison_table(const std::vector<Comparison>& comparisons) {
       out << line;
       continue;
     }
-    std::snprintf(line, sizeof line, "%-22s %-12s %9.2e %9.2e %9.2e  %9.2e %9.2e  %8.3f %8.3f\n",
-                  c.scene.c_str(), c.user.rule.c_str(), c.total.errors.deflection,
-                  c.total.errors.force, c.total.errors.energy, c.iteration.errors.worst(),
-                  c.slicing.errors.worst(), c.user.wall_time_s, c.truth().wall_time_s);
+    std::snprintf(
+        line, sizeof line, "%-22s %-12s %9.2e %9.2e %9.2e  %9.2e %9.2e %9.2e  %8.3f %8.3f\n",
+        c.scene.c_str(), c.user.rule.c_str(), c.total.errors.deflection, c.total.errors.force,
+        c.total.errors.energy, c.iteration.errors.worst(), c.slicing.errors.worst(),
+        c.geometry.errors.worst(), c.user.wall_time_s, c.truth().wall_time_s);
     out << line;
   }
   return out.str();

@@ -29,7 +29,12 @@ struct Comparison {
   std::string reason;  ///< why not, when not comparable
   Result user, converged, slices;
   std::optional<Result> continuous;
+  /// The reference on the same slices in the other contact geometry (DESIGN §3), where it ran.
+  std::optional<Result> other_geometry;
   ErrorReport total, iteration, slicing, agreement;
+  /// The linearised reference against the deformed one, same slices: what the small-deflection
+  /// contact costs on the scene (empty where the other geometry did not run or did not converge).
+  ErrorReport geometry;
   /// How well the ground truth knows its line force (relative; −1 when it is exact or unknown).
   double truth_error_estimate = -1.0;
 
@@ -66,10 +71,18 @@ bool needs_continuous_reference(const Scene& scene);
 Comparison compare_scene(const Scene& scene, const Solvers& solvers,
                          const std::function<void(const std::string&)>& progress = {});
 
-/// Compares results already computed (`continuous` may be absent).
+/// Compares results already computed (`continuous` and `other_geometry` may be absent).
 Comparison compare_results(const std::string& scene, const Result& user, const Result& converged,
                            const Result& slices, const std::optional<Result>& continuous,
-                           const std::string& reason = "");
+                           const std::string& reason = "",
+                           const std::optional<Result>& other_geometry = std::nullopt);
+
+/// The scene in the contact geometry it does not ask for.
+Scene in_other_geometry(const Scene& scene);
+
+/// The label of the reference on slices in the other geometry: "reference_slices_linearised" or
+/// "reference_slices_deformed".
+std::string other_geometry_label(const Scene& scene);
 
 /// The comparison's record (DESIGN §6): errors, their split, per-pair rows, and every run's
 /// time, iterations, rule and c. Result files are named in `files` (label → file name).

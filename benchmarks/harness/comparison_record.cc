@@ -1,5 +1,7 @@
 #include "comparison_record.h"
 
+#include <cmath>
+
 namespace fibrecheck {
 
 using nlohmann::json;
@@ -37,11 +39,13 @@ json to_json(const ComparisonRecord& r) {
   j["c"] = r.c;
   j["ground_truth"] = r.ground_truth;
   j["ground_truth_error_estimate"] = r.truth_error_estimate;
+  j["geometry"] = r.geometry_model;
   if (r.comparable) {
     j.update(to_json(r.total));
     j["iteration_error"] = to_json(r.iteration);
     j["slicing_error"] = to_json(r.slicing);
     j["agreement_error"] = to_json(r.agreement);
+    j["geometry_error"] = to_json(r.geometry);
     j["pairs"] = json::array();
     for (const PairError& p : r.pairs) {
       json row = to_json(p);
@@ -64,11 +68,14 @@ void from_json(const json& j, ComparisonRecord& r) {
   r.c = j.at("c");
   r.ground_truth = j.at("ground_truth");
   r.truth_error_estimate = j.at("ground_truth_error_estimate");
+  r.geometry_model = j.value("geometry", std::string("linearised"));
   if (r.comparable) {
     r.total = j.get<Errors>();
     r.iteration = j.at("iteration_error").get<Errors>();
     r.slicing = j.at("slicing_error").get<Errors>();
     r.agreement = j.at("agreement_error").get<Errors>();
+    r.geometry =
+        j.contains("geometry_error") ? j.at("geometry_error").get<Errors>() : Errors{NAN, NAN, NAN};
     r.pairs.clear();
     for (json row : j.at("pairs")) {
       row["force_run"] = row.at("force_user");

@@ -36,7 +36,11 @@ struct ComparisonRecord {
   double truth_error_estimate = -1.0;  ///< `ground_truth_error_estimate`
   Errors total;  ///< the user's run against the ground truth (flat in the object)
   Errors iteration, slicing, agreement;  ///< `iteration_error`, `slicing_error`, `agreement_error`
-  std::vector<PairError> pairs;          ///< each pair's force of the user's run is `force_user`
+  /// `geometry_error`: the linearised reference against the deformed one on the same slices (NaN
+  /// where the other geometry did not run); `geometry` is the user's run's contact geometry.
+  Errors geometry;
+  std::string geometry_model = "deformed";
+  std::vector<PairError> pairs;  ///< each pair's force of the user's run is `force_user`
   /// Files beside compare.json by label ("scene", "user", the runs' labels).
   std::map<std::string, std::string> files;
 

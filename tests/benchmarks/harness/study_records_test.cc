@@ -172,6 +172,7 @@ TEST(StudyRecords, TheComparisonKeepsItsFieldNames) {
   r.rule = "auto";
   r.ground_truth = "reference_slices";
   r.total = {2.4e-9, 2.4e-11, 2.4e-11};
+  r.geometry = {0.05, 0.16, 0.02};
   PairError pair;
   pair.kind = "point";
   pair.fibres = {"A", "B"};
@@ -179,10 +180,10 @@ TEST(StudyRecords, TheComparisonKeepsItsFieldNames) {
   r.pairs = {pair};
   r.files = {{"user", "user.result.json"}};
   const nlohmann::json j = to_json(r);
-  EXPECT_EQ(keys(j),
-            (Keys{"scene", "comparable", "runs", "rule", "c", "ground_truth",
-                  "ground_truth_error_estimate", "deflection_error", "force_error", "energy_error",
-                  "iteration_error", "slicing_error", "agreement_error", "pairs", "files"}));
+  EXPECT_EQ(keys(j), (Keys{"scene", "comparable", "runs", "rule", "c", "ground_truth",
+                           "ground_truth_error_estimate", "geometry", "deflection_error",
+                           "force_error", "energy_error", "iteration_error", "slicing_error",
+                           "agreement_error", "geometry_error", "pairs", "files"}));
   EXPECT_EQ(keys(j["runs"]["user"]), (Keys{"solver", "rule", "status", "criterion", "iterations",
                                            "wall_time_s", "c", "c_stable_limit"}));
   EXPECT_EQ(keys(j["pairs"][0]), (Keys{"kind", "fibres", "force_user", "force_truth", "error"}));
@@ -190,6 +191,8 @@ TEST(StudyRecords, TheComparisonKeepsItsFieldNames) {
   EXPECT_EQ(back.pairs.at(0).force_run, 1.5e-5);
   EXPECT_EQ(back.runs.at("user").iterations, 3);
   EXPECT_EQ(back.total.deflection, 2.4e-9);
+  EXPECT_EQ(back.geometry.force, 0.16);
+  EXPECT_EQ(back.geometry_model, "deformed");
   ComparisonRecord refused = r;
   refused.comparable = false;
   refused.reason = "the reference on slices ended diverged";
