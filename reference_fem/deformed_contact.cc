@@ -13,10 +13,9 @@ namespace {
 
 /// Geometric updates a step may take before the reference says its normals did not settle.
 constexpr int kMaxGeometricUpdates = 200;
-/// New meshes a step may take for crossings that move. A crossing's own force kinks both fibres
-/// there, so that the closest points of the deformed centrelines lie a little to either side of
-/// it (by about the gap times the kink's angle): where that ambiguity exceeds the tolerance, the
-/// crossing would move from side to side for ever.
+/// New meshes a step may take for crossings that move. Each move is a Newton step towards the
+/// closest points, on tangents estimated from the detection grid: near the answer the estimate's
+/// own error can leave a step larger than a tenth of the tolerance, back and forth.
 constexpr int kMaxCrossingMoves = 5;
 /// A change of the unit normals below which the next solve would be the last one again.
 constexpr double kUnturned = 1e-12;

@@ -331,8 +331,8 @@ bool IterativeSolver::follows_the_fibres_now(double residual) {
   if (!(residual <= follow_below_)) return false;
   evaluate(true);
   ++geometric_updates_;
-  // Crossings move at most kMaxCrossingMoves times from a state within t_d: where the kinks'
-  // ambiguity exceeds t_d they would move from side to side for ever.
+  // Crossings move at most kMaxCrossingMoves times from a state within t_d: their tangents come
+  // from the detection grid, and near the answer the estimate's error can step them back and forth.
   if (crossings_moved_ && residual < t) ++crossing_moves_;
   state_.forces_gathered = false;
   evaluate(false);
