@@ -23,14 +23,18 @@ std::string run_title(const CompactionRun& r) {
     out << "frictionless";
   else
     out << "mu " << r.mu << (r.friction_model == "seed" ? " (seed rule)" : " (Coulomb)");
+  if (r.geometry == "linearised") out << ", linearised contact";
   return out.str();
 }
 
-/// The first run of `solver` with friction coefficient `mu` and `model`, or none.
+/// The first run of `solver` with friction coefficient `mu`, `model` and (unless empty)
+/// `geometry`, or none.
 const CompactionRun* run_of(const CompactionStudyScene& s, const std::string& solver, double mu,
-                            const std::string& model) {
+                            const std::string& model, const std::string& geometry = "") {
   for (const CompactionRun& r : s.runs)
-    if (r.solver == solver && r.mu == mu && r.friction_model == model) return &r;
+    if (r.solver == solver && r.mu == mu && r.friction_model == model &&
+        (geometry.empty() || r.geometry == geometry))
+      return &r;
   return nullptr;
 }
 
@@ -147,8 +151,8 @@ void agreement_figure(ReportPage& page, const CompactionStudyScene& s) {
   std::vector<Gnuplot::Series> errors;
   std::string plot;
   for (const CompactionAgreement& a : s.agreement) {
-    const CompactionRun* it = run_of(s, "iterative", a.mu, a.friction_model);
-    const CompactionRun* ref = run_of(s, "fem", a.mu, a.against);
+    const CompactionRun* it = run_of(s, "iterative", a.mu, a.friction_model, a.geometry);
+    const CompactionRun* ref = run_of(s, "fem", a.mu, a.against, a.geometry);
     if (!it || !ref) continue;
     const std::string rows = pressure_difference_rows(*it, *ref);
     if (rows.empty()) continue;
@@ -179,6 +183,7 @@ void cross_section_figures(ReportPage& page, const StoredCompactionStudy& stored
     const Scene stepped = read_scene((folder / s.scene_file).string());
     for (const CompactionRun& r : s.runs) {
       if (r.solver != "iterative" || r.friction_model == "seed") continue;
+      if (r.geometry != s.runs.front().geometry) continue;
       if (r.friction_model == "none" && run_of(s, "iterative", stepped.contact.friction, "coulomb"))
         continue;
       for (const auto& [step, file] : r.sections) {
@@ -232,16 +237,15 @@ Table agreement_table() {
       "largest per-step difference in pressure, relative to the reference curve's largest "
       "pressure, and in strain energy, relative to its largest, over the steps both converged. "
       "The seed's friction rule is measured against exact Coulomb friction.";
-  agreement.header = {
-      "Scene",          "mu",          "Iterative friction", "Reference friction", "Steps",
-      "Pressure error", "Energy error"};
+  agreement.header = {"Scene",   "mu",    "Iterative friction", "Reference friction",
+                      "Contact", "Steps", "Pressure error",     "Energy error"};
   return agreement;
 }
 
 void agreement_rows(Table& t, const CompactionStudyScene& s) {
   for (const CompactionAgreement& a : s.agreement)
-    t.rows.push_back({s.scene, sci(a.mu), a.friction_model, a.against, std::to_string(a.steps),
-                      sci(a.pressure_error), sci(a.energy_error)});
+    t.rows.push_back({s.scene, sci(a.mu), a.friction_model, a.against, a.geometry,
+                      std::to_string(a.steps), sci(a.pressure_error), sci(a.energy_error)});
 }
 
 }  // namespace

@@ -45,25 +45,30 @@ double mean_pressure(const StepResult& step) {
   return sum / static_cast<double>(step.wall_pressure.size());
 }
 
-/// A run to make: the solver, μ and friction model.
+/// A run to make: the solver, μ, friction model and contact geometry.
 struct Plan {
   std::string solver;
   double mu;
   FrictionModel model;
   bool frictionless;
+  ContactGeometryModel geometry;
 };
 
-/// Both solvers frictionless; with the scene's μ > 0 also both with Coulomb friction and the
-/// iterative solver with the seed's rule.
+/// Both solvers frictionless in the scene's contact geometry and in the other; with the scene's
+/// μ > 0 also both with Coulomb friction and the iterative solver with the seed's rule.
 std::vector<Plan> plans_of(const Scene& scene) {
-  std::vector<Plan> plans = {{"iterative", 0.0, FrictionModel::coulomb, true},
-                             {"fem", 0.0, FrictionModel::coulomb, true}};
+  const ContactGeometryModel own = scene.contact.geometry;
+  const ContactGeometryModel other = in_other_geometry(scene).contact.geometry;
+  std::vector<Plan> plans = {{"iterative", 0.0, FrictionModel::coulomb, true, own},
+                             {"fem", 0.0, FrictionModel::coulomb, true, own}};
   const double mu = scene.contact.friction;
   if (mu > 0.0) {
-    plans.push_back({"iterative", mu, FrictionModel::coulomb, false});
-    plans.push_back({"iterative", mu, FrictionModel::seed, false});
-    plans.push_back({"fem", mu, FrictionModel::coulomb, false});
+    plans.push_back({"iterative", mu, FrictionModel::coulomb, false, own});
+    plans.push_back({"iterative", mu, FrictionModel::seed, false, own});
+    plans.push_back({"fem", mu, FrictionModel::coulomb, false, own});
   }
+  plans.push_back({"iterative", 0.0, FrictionModel::coulomb, true, other});
+  plans.push_back({"fem", 0.0, FrictionModel::coulomb, true, other});
   return plans;
 }
 
@@ -72,6 +77,7 @@ CompactionRun planned_run(const Plan& plan) {
   run.solver = plan.solver;
   run.mu = plan.mu;
   run.friction_model = plan.frictionless ? "none" : to_string(plan.model);
+  run.geometry = to_string(plan.geometry);
   return run;
 }
 
@@ -117,6 +123,7 @@ CompactionRun run_plan(const Scene& scene, const Plan& plan, const CompactionStu
   Scene s = scene;
   s.contact.friction = plan.mu;
   s.contact.friction_model = plan.model;
+  s.contact.geometry = plan.geometry;
   auto solve = [&](const Scene& x) {
     return plan.solver == "fem" ? solvers.reference_slices(x) : solvers.iterative(x);
   };
@@ -148,7 +155,8 @@ std::vector<CompactionAgreement> agreements_of(const std::vector<CompactionRun>&
   for (const CompactionRun& it : runs) {
     if (it.solver != "iterative") continue;
     for (const CompactionRun& ref : runs)
-      if (ref.solver == "fem" && ref.mu == it.mu) out.push_back(agreement_of(it, ref));
+      if (ref.solver == "fem" && ref.mu == it.mu && ref.geometry == it.geometry)
+        out.push_back(agreement_of(it, ref));
   }
   return out;
 }
@@ -166,12 +174,13 @@ void write_compaction_study(const std::vector<CompactionStudyScene>& studies,
       scene_fits.push_back({{"solver", r.solver},
                             {"mu", r.mu},
                             {"friction_model", r.friction_model},
+                            {"geometry", r.geometry},
                             {"van_wyk", to_json(r.van_wyk, false)},
                             {"toll", to_json(r.toll, true)}});
       for (const CompactionPoint& p : r.points)
         rows.push_back({s.scene, r.solver, std::to_string(p.step), cell(p.fibre_volume_fraction),
                         cell(p.pressure), cell(p.strain_energy), cell(p.contacts_per_fibre),
-                        cell(r.mu), r.friction_model, p.status});
+                        cell(r.mu), r.friction_model, p.status, r.geometry});
     }
     fits.push_back(
         {{"scene", s.scene}, {"youngs_modulus", s.youngs_modulus}, {"fits", scene_fits}});
@@ -181,7 +190,7 @@ void write_compaction_study(const std::vector<CompactionStudyScene>& studies,
                         json({{"scenes", fits}}).dump(1) + "\n");
   write_csv((dir / "compaction.csv").string(),
             {"scene", "solver", "step", "fibre_volume_fraction", "pressure_MPa", "strain_energy",
-             "contacts_per_fibre", "mu", "friction_model", "status"},
+             "contacts_per_fibre", "mu", "friction_model", "status", "geometry"},
             rows);
 }
 
@@ -194,7 +203,7 @@ std::vector<CompactionStudyScene> run_compaction_study(const std::vector<Scene>&
   const std::vector<Scene> scenes = stepped_scenes(input, options);
   StudyStore store(folder, "compaction_study");
   std::size_t total = 0;
-  for (const Scene& s : scenes) total += s.contact.friction > 0.0 ? 5 : 2;
+  for (const Scene& s : scenes) total += plans_of(s).size();
   StudyProgress progress("compaction study", total, options.quiet);
   std::size_t index = 0;
   std::vector<CompactionStudyScene> out;

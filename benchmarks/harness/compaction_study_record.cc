@@ -13,6 +13,7 @@ using nlohmann::json;
 std::string CompactionRun::label() const {
   std::ostringstream out;
   out << solver << "_mu" << mu << "_" << friction_model;
+  if (geometry == "linearised") out << "_linearised";
   return file_name_slug(out.str());
 }
 
@@ -47,6 +48,7 @@ CompactionAgreement agreement_of(const CompactionRun& iterative, const Compactio
   a.mu = iterative.mu;
   a.friction_model = iterative.friction_model;
   a.against = reference.friction_model;
+  a.geometry = iterative.geometry;
   const double largest_p = largest_pressure(reference),
                largest_u = largest_strain_energy(reference);
   double dp = 0.0, du = 0.0;
@@ -97,6 +99,7 @@ json to_json(const CompactionRun& r) {
           {"rule", r.rule},
           {"mu", r.mu},
           {"friction_model", r.friction_model},
+          {"geometry", r.geometry},
           {"status", r.status},
           {"message", r.message},
           {"wall_time_s", r.time_s},
@@ -111,6 +114,7 @@ void from_json(const json& j, CompactionRun& r) {
   r.rule = j.at("rule");
   r.mu = j.at("mu");
   r.friction_model = j.at("friction_model");
+  r.geometry = j.value("geometry", std::string("linearised"));
   r.status = j.at("status");
   r.message = j.at("message");
   r.time_s = j.at("wall_time_s");
@@ -126,6 +130,7 @@ json to_json(const CompactionAgreement& a) {
   return {{"mu", a.mu},
           {"friction_model", a.friction_model},
           {"against", a.against},
+          {"geometry", a.geometry},
           {"pressure_error", number_or_null(a.pressure_error)},
           {"energy_error", number_or_null(a.energy_error)},
           {"steps", a.steps}};
@@ -135,6 +140,7 @@ void from_json(const json& j, CompactionAgreement& a) {
   a.mu = j.at("mu");
   a.friction_model = j.at("friction_model");
   a.against = j.at("against");
+  a.geometry = j.value("geometry", std::string("linearised"));
   a.pressure_error = number_at(j, "pressure_error");
   a.energy_error = number_at(j, "energy_error");
   a.steps = j.at("steps");

@@ -29,7 +29,8 @@ struct CompactionRun {
   std::string solver;  ///< "iterative" | "fem" (as in the result files)
   std::string rule;
   double mu = 0;
-  std::string friction_model;  ///< "none" (μ = 0), "coulomb" or "seed"
+  std::string friction_model;         ///< "none" (μ = 0), "coulomb" or "seed"
+  std::string geometry = "deformed";  ///< the contact geometry, "deformed" or "linearised"
   std::string status, message;
   double time_s = 0;  ///< `wall_time_s`
   std::vector<CompactionPoint> points;
@@ -37,7 +38,8 @@ struct CompactionRun {
   /// Result files of kept states (relative to the study folder), with their steps.
   std::vector<std::pair<int, std::string>> sections;
 
-  /// The run's name in keys and file names, e.g. "iterative_mu0_2_coulomb".
+  /// The run's name in keys and file names, e.g. "iterative_mu0_2_coulomb" ("…_linearised" for
+  /// the linearised contact).
   std::string label() const;
 };
 
@@ -49,6 +51,7 @@ struct CompactionAgreement {
   std::string friction_model, against;  ///< the iterative run's model, the reference's
   double pressure_error = NAN, energy_error = NAN;
   int steps = 0;
+  std::string geometry = "deformed";  ///< the contact geometry of both runs
 };
 
 struct CompactionStudyScene {

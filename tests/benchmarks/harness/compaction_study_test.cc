@@ -95,13 +95,17 @@ TEST(CompactionStudy, WritesCurvesFitsAndAgreement) {
   options.quiet = true;
   const auto out = run_compaction_study({s}, options, solvers, folder);
   ASSERT_EQ(out.size(), 1u);
-  ASSERT_EQ(out[0].runs.size(), 2u);  // frictionless: iterative and reference
+  // Frictionless: iterative and reference, in the scene's geometry and in the other.
+  ASSERT_EQ(out[0].runs.size(), 4u);
+  EXPECT_EQ(out[0].runs[0].geometry, "deformed");
+  EXPECT_EQ(out[0].runs[3].geometry, "linearised");
   const CompactionRun& it = out[0].runs[0];
   ASSERT_TRUE(it.van_wyk.valid);
   EXPECT_NEAR(it.van_wyk.k, 1e-6, 1e-12);  // the mean pressure is exactly van Wyk's
   EXPECT_NEAR(it.van_wyk.vf0, 0.4, 1e-9);
   // The reference's curve is 1e-6 MPa above on the four steps it converged.
-  ASSERT_EQ(out[0].agreement.size(), 1u);
+  ASSERT_EQ(out[0].agreement.size(), 2u);  // one per geometry
+  EXPECT_EQ(out[0].agreement[1].geometry, "linearised");
   EXPECT_EQ(out[0].agreement[0].steps, 4);
   double largest = 0.0;
   for (const CompactionPoint& p : out[0].runs[1].points)
@@ -117,7 +121,7 @@ TEST(CompactionStudy, WritesCurvesFitsAndAgreement) {
             0u);
   int rows = 0;
   for (std::string line; std::getline(csv, line);) rows += line.empty() ? 0 : 1;
-  EXPECT_EQ(rows, 10);
+  EXPECT_EQ(rows, 20);
   std::ifstream fits(folder + "/compaction_fit.json");
   const nlohmann::json j = nlohmann::json::parse(fits);
   const nlohmann::json& first = j["scenes"][0]["fits"][0];

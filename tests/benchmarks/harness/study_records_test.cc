@@ -123,15 +123,17 @@ TEST(StudyRecords, TheCompactionStudyKeepsItsFieldNames) {
   const nlohmann::json j = to_json(s);
   EXPECT_EQ(keys(j), (Keys{"scene", "scene_file", "youngs_modulus", "runs", "agreement"}));
   const nlohmann::json& run = j["runs"][0];
-  EXPECT_EQ(keys(run), (Keys{"solver", "rule", "mu", "friction_model", "status", "message",
-                             "wall_time_s", "points", "sections", "van_wyk", "toll"}));
+  EXPECT_EQ(keys(run),
+            (Keys{"solver", "rule", "mu", "friction_model", "geometry", "status", "message",
+                  "wall_time_s", "points", "sections", "van_wyk", "toll"}));
   EXPECT_EQ(keys(run["points"][0]),
             (Keys{"step", "compaction", "load_factor", "fibre_volume_fraction", "pressure_MPa",
                   "strain_energy", "contacts_per_fibre", "iterations", "wall_time_s", "status"}));
   EXPECT_EQ(keys(run["van_wyk"]), (Keys{"k", "vf0", "r2", "points"}));
   EXPECT_EQ(keys(run["toll"]), (Keys{"k", "vf0", "r2", "points", "n"}));
   EXPECT_EQ(keys(j["agreement"][0]),
-            (Keys{"mu", "friction_model", "against", "pressure_error", "energy_error", "steps"}));
+            (Keys{"mu", "friction_model", "against", "geometry", "pressure_error", "energy_error",
+                  "steps"}));
   const CompactionStudyScene back = j.get<CompactionStudyScene>();
   EXPECT_EQ(back.runs.at(0).label(), "iterative_mu0_2_coulomb");
   EXPECT_EQ(back.runs.at(0).sections, r.sections);
