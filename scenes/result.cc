@@ -32,6 +32,7 @@ constexpr std::pair<Status, const char*> kStatusNames[] = {
     {Status::unresolvable, "unresolvable"}};
 constexpr std::pair<Criterion, const char*> kCriterionNames[] = {
     {Criterion::contact, "contact"},       {Criterion::energy, "energy"},
+    {Criterion::force, "force"},
     {Criterion::active_set, "active_set"}, {Criterion::max_iterations, "max_iterations"},
     {Criterion::growth, "growth"},         {Criterion::oscillation, "oscillation"},
     {Criterion::non_finite, "non_finite"}, {Criterion::unresolvable, "unresolvable"}};
@@ -84,6 +85,11 @@ bool replace_non_finite(Result& r) {
         &r.c_stable_limit, &r.axial_load_dropped, &r.max_deflection_over_radius, &r.max_slope,
         &r.wall_time_s, &r.deformed_test.gap_where_pushing, &r.deformed_test.overlap_where_free})
     scrub(*x);
+  // An estimate that is not a number is no estimate: it is dropped, not set to zero.
+  if (r.error_estimate && !(std::isfinite(r.error_estimate->deflection) &&
+                            std::isfinite(r.error_estimate->force) &&
+                            std::isfinite(r.error_estimate->energy)))
+    r.error_estimate.reset();
   if (r.finite_elements) {
     scrub(r.finite_elements->complementarity_residual);
     scrub(r.finite_elements->strain_energy_elements);
@@ -171,6 +177,13 @@ json result_to_json(const Result& r) {
   j["deformed_test"] = {{"gap_where_pushing", r.deformed_test.gap_where_pushing},
                         {"overlap_where_free", r.deformed_test.overlap_where_free}};
   j["geometric_updates"] = r.geometric_updates;
+  if (r.error_estimate)
+    j["error_estimate"] = {{"deflection", r.error_estimate->deflection},
+                           {"force", r.error_estimate->force},
+                           {"energy", r.error_estimate->energy},
+                           {"passes", r.error_estimate->passes},
+                           {"settled", r.error_estimate->settled},
+                           {"wall_time_s", r.error_estimate->time_s}};
   if (r.finite_elements) {
     j["complementarity_residual"] = r.finite_elements->complementarity_residual;
     j["active_set_iterations"] = r.finite_elements->active_set_iterations;
@@ -277,6 +290,16 @@ Result result_from_json(const json& j, const std::string& source) {
     if (j.contains("deformed_test")) {
       r.deformed_test.gap_where_pushing = j["deformed_test"].value("gap_where_pushing", 0.0);
       r.deformed_test.overlap_where_free = j["deformed_test"].value("overlap_where_free", 0.0);
+    }
+    if (j.contains("error_estimate")) {
+      const json& e = j["error_estimate"];
+      ErrorEstimate& estimate = r.error_estimate.emplace();
+      estimate.deflection = e.at("deflection").get<double>();
+      estimate.force = e.at("force").get<double>();
+      estimate.energy = e.at("energy").get<double>();
+      estimate.passes = e.value("passes", 0);
+      estimate.settled = e.value("settled", true);
+      estimate.time_s = e.value("wall_time_s", 0.0);
     }
     if (j.contains("unknowns")) {
       FiniteElementFigures& figures = r.finite_elements.emplace();

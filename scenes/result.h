@@ -68,6 +68,7 @@ enum class Status {
 enum class Criterion {
   contact,         ///< every contact just touching: |d| < t_d where a force acts, d < t_d elsewhere
   energy,          ///< the last n_i strain energies within t_U of the current one
+  force,           ///< every contact just touching and the estimated force error within its tolerance
   active_set,      ///< the reference's active set solved exactly and the candidates settled
   max_iterations,  ///< the iteration cap
   growth,          ///< the residual grew without bound
@@ -120,6 +121,18 @@ struct DeformedTest {
   double overlap_where_free = 0.0;
 };
 
+/// An iterative result's own estimate of its iteration error (against the exact answer of its
+/// sliced problem), relative as DESIGN §6 defines the errors.
+struct ErrorEstimate {
+  double deflection = 0.0;
+  double force = 0.0;
+  double energy = 0.0;
+  /// Active-set passes of the estimate, and whether the last left the pushing set unchanged.
+  int passes = 0;
+  bool settled = true;
+  double time_s = 0.0;  ///< what making it cost (`wall_time_s`)
+};
+
 /// How well a frictional state meets Coulomb's law (μ > 0): the largest slip at a sticking point
 /// (mm), the largest slip not along its friction force at a slipping point (mm, the part across F
 /// and any part against it), and the largest excess of |F| over μN (N).
@@ -162,6 +175,8 @@ struct Result {
   double max_deflection_over_radius = 0.0;
   double max_slope = 0.0;
   DeformedTest deformed_test;
+  /// Iterative results: the estimate of their iteration error, from the final state alone.
+  std::optional<ErrorEstimate> error_estimate;
   /// Deformed contact: how often the normals (and crossings) were made to follow the displaced
   /// centres between linearised problems (the reference: its exact solves beyond the first).
   long geometric_updates = 0;

@@ -208,6 +208,9 @@ Scene scene_from_json(const json& document, const std::string& source) {
     }
     s.energy_tolerance = r.number("energy_tolerance", s.energy_tolerance);
     if (s.energy_tolerance < 0.0) r.fail(r.field("energy_tolerance"), "must not be negative");
+    s.force_tolerance = r.number("force_tolerance", s.force_tolerance);
+    if (!(s.force_tolerance >= 0.0 && s.force_tolerance < 1.0))
+      r.fail(r.field("force_tolerance"), "must lie in [0, 1) (a relative force error)");
     const long window = r.integer("energy_window", s.energy_window);
     if (window < 1 || window > 1000000)
       r.fail(r.field("energy_window"), "must be a whole number from 1 to 1000000");
@@ -396,6 +399,7 @@ json scene_to_json(const Scene& scene) {
        scene.solver.overlap_tolerance ? json(*scene.solver.overlap_tolerance) : json(nullptr)},
       {"energy_tolerance", scene.solver.energy_tolerance},
       {"energy_window", scene.solver.energy_window},
+      {"force_tolerance", scene.solver.force_tolerance},
       {"max_iterations", scene.solver.max_iterations}};
   j["output"] = {{"samples", scene.output.samples}};
   if (!scene.steps.empty()) {
@@ -476,6 +480,11 @@ std::string scene_format_help() {
       << "\n"
          "    energy_window               n_i iterations   default: "
       << d.solver.energy_window
+      << "\n"
+         "    force_tolerance             relative force error the run must reach by its own\n"
+         "                                estimate (criterion force), 0 = the seed's criteria\n"
+         "                                alone   default: "
+      << d.solver.force_tolerance
       << "\n"
          "    max_iterations              default: "
       << d.solver.max_iterations

@@ -70,6 +70,9 @@ struct SolverSettings {
   /// t_d, mm; default 1e-5 of the smallest fibre radius.
   std::optional<double> overlap_tolerance;
   double energy_tolerance = 0.0;  ///< t_U, N·mm; 0 switches the energy criterion off
+  /// Relative: the run stops when its estimated force error is below this (criterion `force`);
+  /// 0 leaves the seed's criteria alone.
+  double force_tolerance = 1e-4;
   int energy_window = 10;         ///< n_i
   long max_iterations = 100000;
 };

@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <memory>
+#include <optional>
 #include <sstream>
 
 #include "ambiguous_sides.h"
@@ -12,6 +13,7 @@
 #include "compliance_operator.h"
 #include "contact_detection.h"
 #include "contact_results.h"
+#include "error_estimate.h"
 #include "convergence.h"
 #include "fibre.h"
 #include "force_update.h"
@@ -34,6 +36,7 @@ SolverOptions SolverOptions::from_scene(const Scene& scene) {
   o.overlap_tolerance = scene.overlap_tolerance();
   o.energy_tolerance = scene.solver.energy_tolerance;
   o.energy_window = scene.solver.energy_window;
+  o.force_tolerance = scene.solver.force_tolerance;
   o.max_iterations = scene.solver.max_iterations;
   return o;
 }
@@ -96,6 +99,7 @@ class IterativeSolver {
   bool follows_the_fibres_now(double residual);
   void record(long iteration, long before);
   bool just_touching() const;
+  std::optional<Termination> forces_accurate_enough();
   bool must_measure_again();
   std::optional<Termination> diverging(long iteration, double residual);
   long update(long iteration);
@@ -149,6 +153,11 @@ class IterativeSolver {
   std::vector<std::vector<Eigen::Vector3d>> crossing_grid_u_;  ///< theirs at the grid
   Residuals residuals_;
   double exact_energy_ = 0.0;
+  /// t_d the criteria and rules work to: the scene's, made smaller where the force estimate asks.
+  double overlap_tolerance_;
+  std::optional<ErrorEstimate> estimate_;  ///< of the state the run stopped in, if made there
+  static constexpr int kMaxCorrections = 3;
+  int corrections_ = 0;  ///< states that took the estimate's answer
   double energy_ = NAN;  ///< Eq. 4.34 at the last evaluation, where it was computed
   double lambda_max_ = 0.0;
   double step_ = 0.0;
@@ -178,7 +187,8 @@ IterativeSolver::IterativeSolver(const Scene& scene, const SolverOptions& option
       use_working_set_(mu_ == 0.0 && rule_->allows_working_set()),
       tresca_(mu_, options.overlap_tolerance),
       lagged_normals_(scene.contact.geometry == ContactGeometryModel::deformed &&
-                      options.rule != UpdateRule::seed) {}
+                      options.rule != UpdateRule::seed),
+      overlap_tolerance_(options.overlap_tolerance) {}
 
 Result IterativeSolver::run() {
   const auto start = Clock::now();
@@ -203,12 +213,14 @@ Result IterativeSolver::run() {
     }
     if (judged) remember_best(residual);
     if (judged && just_touching()) {
-      if (!must_measure_again()) {
-        end = {Status::converged, Criterion::contact, ""};
+      if (must_measure_again()) {
+        ++iteration;
+        continue;
+      }
+      if (auto stop = forces_accurate_enough()) {
+        end = *stop;
         break;
       }
-      ++iteration;
-      continue;
     }
     if (options_.energy_tolerance > 0.0 && energy_window_.push(energy_)) {
       end = {Status::converged, Criterion::energy, ""};
@@ -268,7 +280,7 @@ void IterativeSolver::follow_crossings() {
   superposition_.contact_displacements(state_.contacts, state_.force_on_a, true, state_.u_a,
                                        state_.u_b);
   if (!detector_.follow_crossings(crossing_grid_u_, state_.contacts, state_.u_a, state_.u_b,
-                                  0.1 * options_.overlap_tolerance))
+                                  0.1 * overlap_tolerance_))
     return;
   superposition_.move_points(state_.contacts, crossing_fibres_);
   crossings_moved_ = true;
@@ -293,10 +305,54 @@ double IterativeSolver::watched_residual() const {
 // The contact criterion of §4.3.6: no overlap and no force across a gap beyond t_d (and with
 // Coulomb friction, the inner problem's slips settled).
 bool IterativeSolver::just_touching() const {
-  const double t = options_.overlap_tolerance;
+  const double t = overlap_tolerance_;
   const bool friction_settled =
       !coulomb_ || (tresca_figures_.stick_residual < t && tresca_figures_.slip_residual < t);
   return residuals_.overlap < t && residuals_.gap_force < t && friction_settled;
+}
+
+// The contact criterion met: with a force tolerance the run also asks its own error estimate.
+// Where the estimated force error is still above the tolerance, the state takes the estimate's
+// answer of its linearised problem (one Newton step of the contact problem on the pushing set)
+// and the iteration goes on from there; after kMaxCorrections of them t_d shrinks instead, by the
+// factor the force error must (forces converge about in proportion to the overlaps left), down
+// to a millionth of the scene's t_d, where the run stops with a warning.
+std::optional<Termination> IterativeSolver::forces_accurate_enough() {
+  const double wanted = options_.force_tolerance;
+  if (!(wanted > 0.0)) return Termination{Status::converged, Criterion::contact, ""};
+  working_set_.leave(state_);
+  std::vector<Contact> answer;
+  estimate_ = estimate_iteration_error(scene_, fibres_, detector_.geometry(), state_.contacts,
+                                       &answer);
+  if (estimate_->force < wanted) return Termination{Status::converged, Criterion::force, ""};
+  if (corrections_ < kMaxCorrections) {
+    ++corrections_;
+    state_.contacts = std::move(answer);
+    state_.forces_gathered = false;
+    const Eigen::Index n = static_cast<Eigen::Index>(state_.contacts.size());
+    if (state_.iterate.size() == n) {
+      for (Eigen::Index k = 0; k < n; ++k)
+        state_.iterate[k] = state_.contacts[static_cast<std::size_t>(k)].force;
+      state_.previous = state_.iterate;
+    }
+    rule_->restart(state_);
+    divergence_.reset();
+  } else {
+    const double floor = 1e-6 * options_.overlap_tolerance;
+    if (overlap_tolerance_ <= floor) {
+      std::ostringstream out;
+      out.precision(3);
+      out << "the estimated force error " << estimate_->force << " is above force_tolerance "
+          << wanted << " with t_d made " << overlap_tolerance_ << " mm";
+      warnings_.push_back(out.str());
+      return Termination{Status::converged, Criterion::contact, ""};
+    }
+    const double shrink = std::clamp(0.5 * wanted / estimate_->force, 1e-3, 0.5);
+    overlap_tolerance_ = std::max(shrink * overlap_tolerance_, floor);
+  }
+  estimate_.reset();
+  if (use_working_set_) working_set_.enter(state_);
+  return std::nullopt;
 }
 
 // Before stopping: no candidate outside the working set may overlap, no contact outside the
@@ -326,7 +382,7 @@ bool IterativeSolver::must_measure_again() {
 // residuals are then those after the update).
 bool IterativeSolver::follows_the_fibres_now(double residual) {
   if (!lagged_normals_) return false;
-  const double t = options_.overlap_tolerance;
+  const double t = overlap_tolerance_;
   if (!std::isfinite(follow_below_)) follow_below_ = std::max(kFollowFraction * residual, t);
   if (!(residual <= follow_below_)) return false;
   evaluate(true);
@@ -370,8 +426,8 @@ long IterativeSolver::update(long iteration) {
   context.seed_friction = seed_friction_;
   context.geometry = &detector_.geometry();
   context.lambda_max = lambda_max_;
-  context.tolerance = lagged_normals_ ? std::min(options_.overlap_tolerance, follow_below_)
-                                      : options_.overlap_tolerance;
+  context.tolerance =
+      lagged_normals_ ? std::min(overlap_tolerance_, follow_below_) : overlap_tolerance_;
   context.max_products = options_.max_iterations - iteration;
   const long work = rule_->update(state_, context);
   if (working_set_.active() && working_set_.due()) working_set_.revise(state_);
@@ -532,6 +588,11 @@ Result IterativeSolver::finish(const Termination& end, long iterations, Clock::t
   record.warnings = warnings_;
   record.history = history_;
   Result r = iterative_result(scene_, options_, fibres_, superposition_, detector_, state_, record);
+  if (estimate_)
+    r.error_estimate = estimate_;
+  else if (end.criterion != Criterion::non_finite && end.status != Status::unresolvable)
+    r.error_estimate =
+        estimate_iteration_error(scene_, fibres_, detector_.geometry(), state_.contacts);
   r.wall_time_s = seconds_since(start);
   return r;
 }

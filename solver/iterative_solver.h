@@ -28,6 +28,7 @@ struct SolverOptions {
   double overlap_tolerance = 0;  ///< t_d, mm
   double energy_tolerance = 0;   ///< t_U, N·mm; 0 = off
   int energy_window = 10;        ///< n_i
+  double force_tolerance = 0;    ///< relative; 0 = the seed's criteria alone
   long max_iterations = 100000;
   /// Candidate contacts are found this fraction of the smallest radius before they touch.
   double margin_factor = 0.1;

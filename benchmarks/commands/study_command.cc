@@ -226,6 +226,11 @@ void add_tolerance(CLI::App& study, StudyArguments& args) {
                    "Overlap tolerances t_d as multiples of the smallest radius")
       ->delimiter(',');
   tolerance
+      ->add_option("--force-tolerances", o.force_tolerances,
+                   "Runs of the default rule stopped by their force estimate at these relative "
+                   "force tolerances (empty: none)")
+      ->delimiter(',');
+  tolerance
       ->add_option("--seed-fractions", o.seed_fractions,
                    "The seed rule's c as fractions of its stable limit")
       ->delimiter(',');

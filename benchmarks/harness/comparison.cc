@@ -147,6 +147,10 @@ ComparisonRecord record_of(const Comparison& c,
   r.truth_error_estimate = c.truth_error_estimate;
   r.total = c.total.errors;
   r.iteration = c.iteration.errors;
+  if (c.comparable) {
+    r.estimate = estimated_errors(c.user);
+    r.effectivity = effectivity(r.estimate, r.iteration);
+  }
   r.slicing = c.slicing.errors;
   r.agreement = c.agreement.errors;
   r.pairs = c.total.pairs;
@@ -184,9 +188,9 @@ void write_comparison(const std::string& folder, const Scene& scene, const Compa
 std::string comparison_table(const std::vector<Comparison>& comparisons) {
   std::ostringstream out;
   char line[512];
-  std::snprintf(line, sizeof line, "%-22s %-12s %9s %9s %9s  %9s %9s %9s  %8s %8s\n", "scene",
-                "rule", "deflect.", "force", "energy", "iteration", "slicing", "geometry", "user_s",
-                "truth_s");
+  std::snprintf(line, sizeof line, "%-22s %-12s %9s %9s %9s  %9s %9s %9s  %9s %6s  %8s %8s\n",
+                "scene", "rule", "deflect.", "force", "energy", "iteration", "slicing", "geometry",
+                "estimate", "eff.", "user_s", "truth_s");
   out << line;
   for (const Comparison& c : comparisons) {
     if (!c.comparable) {
@@ -195,11 +199,15 @@ std::string comparison_table(const std::vector<Comparison>& comparisons) {
       out << line;
       continue;
     }
-    std::snprintf(
-        line, sizeof line, "%-22s %-12s %9.2e %9.2e %9.2e  %9.2e %9.2e %9.2e  %8.3f %8.3f\n",
-        c.scene.c_str(), c.user.rule.c_str(), c.total.errors.deflection, c.total.errors.force,
-        c.total.errors.energy, c.iteration.errors.worst(), c.slicing.errors.worst(),
-        c.geometry.errors.worst(), c.user.wall_time_s, c.truth().wall_time_s);
+    // The estimate and its effectivity on the force, the error the estimate is made for.
+    const Errors estimate = estimated_errors(c.user);
+    const double index = effectivity(estimate, c.iteration.errors).force;
+    std::snprintf(line, sizeof line,
+                  "%-22s %-12s %9.2e %9.2e %9.2e  %9.2e %9.2e %9.2e  %9.2e %6.2f  %8.3f %8.3f\n",
+                  c.scene.c_str(), c.user.rule.c_str(), c.total.errors.deflection,
+                  c.total.errors.force, c.total.errors.energy, c.iteration.errors.worst(),
+                  c.slicing.errors.worst(), c.geometry.errors.worst(), estimate.force, index,
+                  c.user.wall_time_s, c.truth().wall_time_s);
     out << line;
   }
   return out.str();

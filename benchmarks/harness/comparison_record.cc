@@ -46,6 +46,8 @@ json to_json(const ComparisonRecord& r) {
     j["slicing_error"] = to_json(r.slicing);
     j["agreement_error"] = to_json(r.agreement);
     j["geometry_error"] = to_json(r.geometry);
+    j["error_estimate"] = to_json(r.estimate);
+    j["effectivity"] = to_json(r.effectivity);
     j["pairs"] = json::array();
     for (const PairError& p : r.pairs) {
       json row = to_json(p);
@@ -76,6 +78,9 @@ void from_json(const json& j, ComparisonRecord& r) {
     r.agreement = j.at("agreement_error").get<Errors>();
     r.geometry =
         j.contains("geometry_error") ? j.at("geometry_error").get<Errors>() : Errors{NAN, NAN, NAN};
+    const Errors none{NAN, NAN, NAN};
+    r.estimate = j.contains("error_estimate") ? j.at("error_estimate").get<Errors>() : none;
+    r.effectivity = j.contains("effectivity") ? j.at("effectivity").get<Errors>() : none;
     r.pairs.clear();
     for (json row : j.at("pairs")) {
       row["force_run"] = row.at("force_user");

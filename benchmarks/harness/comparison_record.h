@@ -40,6 +40,9 @@ struct ComparisonRecord {
   /// where the other geometry did not run); `geometry` is the user's run's contact geometry.
   Errors geometry;
   std::string geometry_model = "deformed";
+  /// `error_estimate`: the user's run's own estimate of its iteration error; `effectivity`: that
+  /// estimate over the iteration error measured (NaN where either is missing or the error ≤ 1e-10).
+  Errors estimate{NAN, NAN, NAN}, effectivity{NAN, NAN, NAN};
   std::vector<PairError> pairs;  ///< each pair's force of the user's run is `force_user`
   /// Files beside compare.json by label ("scene", "user", the runs' labels).
   std::map<std::string, std::string> files;

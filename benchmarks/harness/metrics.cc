@@ -128,6 +128,17 @@ ErrorReport measure_errors(const Result& run, const Result& truth, const std::st
   return report;
 }
 
+Errors estimated_errors(const Result& run) {
+  if (!run.error_estimate) return {NAN, NAN, NAN};
+  return {run.error_estimate->deflection, run.error_estimate->force, run.error_estimate->energy};
+}
+
+Errors effectivity(const Errors& estimate, const Errors& truth, double floor) {
+  auto index = [floor](double e, double t) { return t > floor ? e / t : NAN; };
+  return {index(estimate.deflection, truth.deflection), index(estimate.force, truth.force),
+          index(estimate.energy, truth.energy)};
+}
+
 double observed_order(const std::vector<double>& n, const std::vector<double>& error) {
   double sx = 0, sy = 0, sxx = 0, sxy = 0;
   int m = 0;

@@ -49,6 +49,14 @@ double truth_force(const ContactResult& pair);
 /// two cannot be results of one scene (different fibres or sample counts).
 ErrorReport measure_errors(const Result& run, const Result& truth, const std::string& what);
 
+/// An iterative result's own estimate of its iteration error as Errors (NaN where it has none).
+Errors estimated_errors(const Result& run);
+
+/// The effectivity index of an error estimate, estimate / true error per metric: NaN where the
+/// true error is at most `floor` (1e-10: round-off of the reference, nothing to estimate) or the
+/// estimate is missing.
+Errors effectivity(const Errors& estimate, const Errors& truth, double floor = 1e-10);
+
 /// Least-squares slope of log(error) against log(n) over the points with error > 0: the observed
 /// order of convergence p in error ∝ n^−p (returned as p; NaN with fewer than two usable points).
 double observed_order(const std::vector<double>& n, const std::vector<double>& error);

@@ -126,6 +126,7 @@ class StabilityRuns {
           s.solver.rule = UpdateRule::seed;
           s.solver.c = f * c_crit;
           s.solver.energy_tolerance = 0.0;
+          s.solver.force_tolerance = 0.0;  // the seed's method as it stands
           s.solver.max_iterations = options_.max_iterations;
           const Result r = solvers_.iterative(s);
           return journal_line(StepPoint{f, f * c_crit, r.iterations, to_string(r.status),

@@ -114,9 +114,40 @@ class ToleranceSceneRuns {
           if (rule.rule == UpdateRule::seed) s.solver.c = rule.c;
           s.solver.overlap_tolerance = td;
           s.solver.energy_tolerance = 0.0;
+          s.solver.force_tolerance = 0.0;  // the seed's criterion at t_d alone
           s.solver.max_iterations = options_.max_iterations;
           record(key, rule.label, td, n, timed([&] { return solvers_.iterative(s); }));
         }
+    for (int factor : factors)
+      for (double f : options_.force_tolerances) {
+        const int n = scene_.contact.slices * factor;
+        const std::string label = std::string(to_string(UpdateRule::accelerated)) + " (force)";
+        const std::string key =
+            scene_.name + "/" + label + "/" + number_text(f) + "/" + std::to_string(n);
+        if (!start(key, label + ", force tolerance " + number_text(f) + ", " +
+                            std::to_string(n) + " slices"))
+          continue;
+        Scene s = scene_;
+        s.contact.slices = n;
+        s.solver.rule = UpdateRule::accelerated;
+        s.solver.energy_tolerance = 0.0;
+        s.solver.force_tolerance = f;
+        s.solver.max_iterations = options_.max_iterations;
+        record(key, label, f, n, timed([&] { return solvers_.iterative(s); }));
+      }
+  }
+
+  /// The reference on `slices` slices, the exact answer an iterative run's estimate is measured
+  /// against: the ground truth where that is on the scene's slices, else solved once per count.
+  const Result& sliced_reference(int slices) {
+    if (!continuous_ && slices == scene_.contact.slices) return truth_;
+    auto found = sliced_.find(slices);
+    if (found == sliced_.end()) {
+      Scene s = scene_;
+      s.contact.slices = slices;
+      found = sliced_.emplace(slices, solvers_.reference_slices(s)).first;
+    }
+    return found->second;
   }
 
   /// The reference at each refinement (once, on the scene's slices, without continuous contact).
@@ -157,6 +188,13 @@ class ToleranceSceneRuns {
     p.iterations = run.iterations;
     p.status = to_string(run.status);
     p.errors = measure_errors(run, truth_, scene_.name).errors;
+    if (method != "reference") {
+      p.estimate = estimated_errors(run);
+      const Result& exact = sliced_reference(slices);
+      if (exact.status == Status::converged)
+        p.effectivity =
+            effectivity(p.estimate, measure_errors(run, exact, scene_.name).errors);
+    }
     nlohmann::json line = to_json(p);
     line.erase("pareto");
     line["scene"] = scene_.name;
@@ -171,6 +209,7 @@ class ToleranceSceneRuns {
   std::size_t& index_;
   bool continuous_ = false;
   Result truth_;
+  std::map<int, Result> sliced_;
 };
 
 void write_tolerance_study(const std::vector<ToleranceStudyScene>& studies,
@@ -183,7 +222,8 @@ void write_tolerance_study(const std::vector<ToleranceStudyScene>& studies,
       rows.push_back({s.scene, p.method, cell(p.parameter), std::to_string(p.slices),
                       cell(p.time_s), std::to_string(p.iterations), p.status,
                       cell(p.errors.deflection), cell(p.errors.force), cell(p.errors.energy),
-                      p.pareto ? "1" : "0"});
+                      p.pareto ? "1" : "0", cell(p.estimate.force), cell(p.effectivity.deflection),
+                      cell(p.effectivity.force), cell(p.effectivity.energy)});
     for (const SpeedUp& u : s.speedups)
       speed.push_back({s.scene, cell(u.error_level), cell(u.iterative_time_s),
                        cell(u.reference_time_s), cell(u.speedup())});
@@ -192,7 +232,8 @@ void write_tolerance_study(const std::vector<ToleranceStudyScene>& studies,
   write_file_atomically((dir / "tolerance_study.json").string(), all.dump(1) + "\n");
   write_csv((dir / "tolerance_study.csv").string(),
             {"scene", "method", "parameter", "slices", "time_s", "iterations", "status",
-             "deflection_error", "force_error", "energy_error", "pareto"},
+             "deflection_error", "force_error", "energy_error", "pareto", "force_estimate",
+             "deflection_effectivity", "force_effectivity", "energy_effectivity"},
             rows);
   write_csv((dir / "speedup.csv").string(),
             {"scene", "error_level", "iterative_time_s", "reference_time_s", "speedup"}, speed);

@@ -29,6 +29,9 @@ struct ToleranceStudyOptions {
   /// The iterative runs also at these multiples of the scene's slices: its error against the
   /// continuous ground truth is that of its slices as much as that of its stopping criterion.
   std::vector<int> slice_factors = {1, 2, 4};
+  /// Runs of the default rule stopped by its force estimate instead (solver.force_tolerance),
+  /// at these relative force tolerances and the scene's t_d.
+  std::vector<double> force_tolerances = {1e-2, 1e-3, 1e-4};
   /// The seed's c as fractions of its stable limit 2/λmax(D½WD½).
   std::vector<double> seed_fractions = {0.9};
   /// The reference's refinements K (continuous line contact; scenes with point contacts only run

@@ -15,6 +15,10 @@ json to_json(const TolerancePoint& p) {
             {"iterations", p.iterations},
             {"status", p.status},
             {"pareto", p.pareto}});
+  if (p.method != "reference") {
+    j["error_estimate"] = to_json(p.estimate);
+    j["effectivity"] = to_json(p.effectivity);
+  }
   return j;
 }
 
@@ -26,6 +30,9 @@ void from_json(const json& j, TolerancePoint& p) {
   p.iterations = j.at("iterations");
   p.status = j.at("status");
   p.errors = j.get<Errors>();
+  const Errors none{NAN, NAN, NAN};
+  p.estimate = j.contains("error_estimate") ? j.at("error_estimate").get<Errors>() : none;
+  p.effectivity = j.contains("effectivity") ? j.at("effectivity").get<Errors>() : none;
   p.pareto = j.at("pareto");
 }
 

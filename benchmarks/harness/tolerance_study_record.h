@@ -13,7 +13,9 @@
 namespace fibrecheck {
 
 struct TolerancePoint {
-  std::string method;    ///< "seed 0.5", "auto", "accelerated", "reference"
+  /// "seed 0.5", "auto", "accelerated", "accelerated (force)" (stopped by solver.force_tolerance,
+  /// then `parameter` is that tolerance), "reference"
+  std::string method;
   double parameter = 0;  ///< t_d (mm) for the iterative rules, K for the reference
   int slices = 0;
   double time_s = 0;
@@ -21,6 +23,9 @@ struct TolerancePoint {
   std::string status;
   Errors errors;
   bool pareto = false;  ///< on its method's Pareto front of error against time
+  /// Iterative runs: their own estimate of the iteration error (`error_estimate`) and its
+  /// effectivity index against the reference on the same slices (NaN where the error ≤ 1e-10).
+  Errors estimate{NAN, NAN, NAN}, effectivity{NAN, NAN, NAN};
 };
 
 struct SpeedUp {

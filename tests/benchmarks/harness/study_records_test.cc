@@ -68,6 +68,7 @@ TEST(StudyRecords, TheToleranceStudyKeepsItsFieldNames) {
   EXPECT_EQ(keys(j), (Keys{"scene", "ground_truth", "truth_error_estimate", "points", "speedups"}));
   EXPECT_EQ(keys(j["points"][0]),
             (Keys{"method", "parameter", "slices", "time_s", "iterations", "status", "pareto",
+                  "error_estimate", "effectivity",
                   "deflection_error", "force_error", "energy_error"}));
   EXPECT_EQ(keys(j["speedups"][0]), (Keys{"error_level", "iterative_time_s", "iterative_method",
                                           "reference_time_s", "speedup"}));
@@ -185,7 +186,8 @@ TEST(StudyRecords, TheComparisonKeepsItsFieldNames) {
   EXPECT_EQ(keys(j), (Keys{"scene", "comparable", "runs", "rule", "c", "ground_truth",
                            "ground_truth_error_estimate", "geometry", "deflection_error",
                            "force_error", "energy_error", "iteration_error", "slicing_error",
-                           "agreement_error", "geometry_error", "pairs", "files"}));
+                           "agreement_error", "geometry_error", "error_estimate", "effectivity",
+                           "pairs", "files"}));
   EXPECT_EQ(keys(j["runs"]["user"]), (Keys{"solver", "rule", "status", "criterion", "iterations",
                                            "wall_time_s", "c", "c_stable_limit"}));
   EXPECT_EQ(keys(j["pairs"][0]), (Keys{"kind", "fibres", "force_user", "force_truth", "error"}));

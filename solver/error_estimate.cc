@@ -1,0 +1,253 @@
+#include "error_estimate.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <map>
+#include <tuple>
+
+#include "compliance_operator.h"
+#include "fibre_stiffness.h"
+#include "projected_cg.h"
+#include "superposition.h"
+
+namespace fibrecheck {
+
+namespace {
+
+/// A contact whose corrected force or overlap passes zero by more than this share of the final
+/// residual switches.
+constexpr double kSwitchingShare = 1e-6;
+/// The contact problem solved from the final state is solved to this share of its residual: the
+/// estimate then carries three digits of the error.
+constexpr double kProblemShare = 1e-3;
+constexpr int kMaxCgSteps = 400;
+constexpr long kMaxProjectedProducts = 300;
+/// Deformed contact: at most this many turns of the normals, stopping when they turn by less
+/// than kUnturned.
+constexpr int kGeometricPasses = 4;
+constexpr double kUnturned = 1e-10;
+constexpr double kCgReduction = 1e-8;
+
+/// The force each contact's fibre A receives under normal forces `P` and the contacts' friction.
+std::vector<Eigen::Vector3d> forces_on_a(const std::vector<Contact>& contacts,
+                                         const Eigen::VectorXd& P) {
+  std::vector<Eigen::Vector3d> f(contacts.size());
+  for (std::size_t k = 0; k < contacts.size(); ++k) {
+    const Contact& c = contacts[k];
+    const double p = P[static_cast<Eigen::Index>(k)];
+    f[k] = (c.kind == ContactKind::wall ? p : -p) * c.normal + (p > 0.0 ? c.friction : Eigen::Vector3d::Zero());
+  }
+  return f;
+}
+
+/// Every contact's overlap along its normal under the normal forces `P` (and the scene's loads),
+/// and the exact strain energy ½ΣP·v.
+Eigen::VectorXd overlaps(const Superposition& all, const ContactGeometry& geometry,
+                         const std::vector<Contact>& contacts, const Eigen::VectorXd& P,
+                         double* energy) {
+  std::vector<Eigen::Vector3d> u_a, u_b;
+  all.contact_displacements(contacts, forces_on_a(contacts, P), true, u_a, u_b, energy);
+  Eigen::VectorXd d(static_cast<Eigen::Index>(contacts.size()));
+  for (std::size_t k = 0; k < contacts.size(); ++k)
+    d[static_cast<Eigen::Index>(k)] = geometry.overlap_along_normal(contacts[k], u_a[k], u_b[k]);
+  return d;
+}
+
+/// x with W_AA·x = r on the contacts of `active` (their own list), by conjugate gradients
+/// preconditioned with the fibres' stiffness at their stations.
+Eigen::VectorXd solve_on(const Scene& scene, const std::vector<Fibre>& fibres,
+                         const std::vector<Contact>& active, const Eigen::VectorXd& r) {
+  Superposition superposition(fibres, scene);
+  superposition.attach(active);
+  FibreStiffness stiffness(fibres);
+  stiffness.attach(active);
+  const ComplianceOperator W(superposition, active);
+  const std::vector<unsigned char> all(active.size(), 1);
+  const Eigen::Index n = r.size();
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(n), res = r, z(n), p, q;
+  stiffness.apply(res, all, z);
+  p = z;
+  double rz = res.dot(z);
+  const double stop = kCgReduction * r.norm();
+  for (int step = 0; step < kMaxCgSteps && res.norm() > stop; ++step) {
+    W.apply(p, q);
+    const double pq = p.dot(q);
+    if (!(pq > 0.0)) break;
+    const double alpha = rz / pq;
+    x += alpha * p;
+    res -= alpha * q;
+    stiffness.apply(res, all, z);
+    const double rz_next = res.dot(z);
+    p = z + (rz_next / rz) * p;
+    rz = rz_next;
+  }
+  return x;
+}
+
+/// True when the corrected forces `exact` keep the pushing set: none below zero where it pushes
+/// (beyond a share kSwitchingShare of the largest force), no overlap beyond `slack` (mm) where it
+/// does not: an overlap the estimate would not resolve to its own precision anyway.
+bool switching_settled(const Eigen::VectorXd& exact, const Eigen::VectorXd& gap,
+                       const std::vector<unsigned char>& pushes, double slack) {
+  const double force_slack = kSwitchingShare * exact.cwiseAbs().maxCoeff();
+  for (Eigen::Index k = 0; k < exact.size(); ++k) {
+    if (pushes[k] && exact[k] < -force_slack) return false;
+    if (!pushes[k] && gap[k] > slack) return false;
+  }
+  return true;
+}
+
+/// The frictionless contact problem of the candidate list from the final state (forces `P` in,
+/// the answer out), by the projected conjugate gradients of the cg rule, to `tolerance` (mm).
+bool solve_from(const Superposition& all, const std::vector<Fibre>& fibres,
+                const std::vector<Contact>& contacts, const Eigen::VectorXd& d, double tolerance,
+                Eigen::VectorXd& P) {
+  FibreStiffness stiffness(fibres);
+  stiffness.attach(contacts);
+  const ComplianceOperator W(all, contacts);
+  ContactQuadraticProgramme problem;
+  problem.compliance = [&W](const Eigen::VectorXd& x, Eigen::VectorXd& y) { W.apply(x, y); };
+  problem.preconditioner = [&stiffness](const Eigen::VectorXd& r,
+                                        const std::vector<unsigned char>& free,
+                                        Eigen::VectorXd& z) { stiffness.apply(r, free, z); };
+  problem.largest_eigenvalue = W.largest_eigenvalue();
+  Eigen::VectorXd g = -d;
+  const ProjectedCgOutcome outcome =
+      solve_by_projected_cg(problem, P, g, tolerance, kMaxProjectedProducts);
+  return outcome.finite && outcome.residual < tolerance;
+}
+
+/// The worst pair's |ΔF|/F on its resultant, as the comparison measures force errors.
+double pair_force_error(const std::vector<Contact>& contacts, const Eigen::VectorXd& P,
+                        const std::vector<Contact>& answer, const Eigen::VectorXd& exact) {
+  std::map<std::tuple<int, int, int>, std::pair<Eigen::Vector3d, Eigen::Vector3d>> pairs;
+  const std::vector<Eigen::Vector3d> f = forces_on_a(contacts, P), g = forces_on_a(answer, exact);
+  for (std::size_t k = 0; k < contacts.size(); ++k) {
+    const Contact& c = contacts[k];
+    auto& [mine, theirs] = pairs.try_emplace(std::make_tuple(static_cast<int>(c.kind), c.a, c.b),
+                                             Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero())
+                               .first->second;
+    mine += f[k];
+    theirs += g[k];
+  }
+  double strongest = 0.0;
+  for (const auto& [key, sides] : pairs) strongest = std::max(strongest, sides.second.norm());
+  double worst = 0.0;
+  for (const auto& [key, sides] : pairs) {
+    const double truth = sides.second.norm(), mine = sides.first.norm();
+    if (mine == 0.0 && truth == 0.0) continue;
+    const double scale = truth > 1e-9 * strongest ? truth : std::max(strongest, 1e-300);
+    worst = std::max(worst, std::fabs(mine - truth) / scale);
+  }
+  return worst;
+}
+
+/// The largest deflection difference over the largest deflection, at the result's samples.
+double deflection_error(const Scene& scene, const Superposition& all,
+                        const std::vector<Contact>& contacts, const Eigen::VectorXd& P,
+                        const std::vector<Contact>& answer, const Eigen::VectorXd& exact) {
+  const int samples = scene.output.samples;
+  std::vector<double> s(samples);
+  for (int j = 0; j < samples; ++j) s[j] = static_cast<double>(j) / (samples - 1);
+  const std::vector<Eigen::Vector3d> f = forces_on_a(answer, exact);
+  std::vector<Eigen::Vector3d> df = forces_on_a(contacts, P);
+  for (std::size_t k = 0; k < df.size(); ++k) df[k] = f[k] - df[k];
+  double largest = 0.0, difference = 0.0;
+  std::vector<Eigen::Vector3d> u, du;
+  for (int fibre = 0; fibre < static_cast<int>(scene.fibres.size()); ++fibre) {
+    all.fibre_field(fibre, f, true, s, u);
+    all.fibre_field(fibre, df, false, s, du);
+    for (int j = 0; j < samples; ++j) {
+      largest = std::max(largest, u[j].norm());
+      difference = std::max(difference, du[j].norm());
+    }
+  }
+  return largest > 0.0 ? difference / largest : 0.0;
+}
+
+
+/// The answer of the problem linearised about the contacts' normals, from forces `P` with overlaps
+/// `d`: the residual equation on the pushing set, or where that set switches, the contact problem
+/// solved from `P`. Counts its passes into `estimate` and says whether it settled.
+Eigen::VectorXd linearised_answer(const Scene& scene, const std::vector<Fibre>& fibres,
+                                  const Superposition& all, const ContactGeometry& geometry,
+                                  const std::vector<Contact>& contacts, const Eigen::VectorXd& P,
+                                  const Eigen::VectorXd& d, ErrorEstimate& estimate) {
+  const Eigen::Index n = P.size();
+  std::vector<unsigned char> pushes(contacts.size());
+  std::vector<Contact> active;
+  std::vector<Eigen::Index> where;
+  for (Eigen::Index k = 0; k < n; ++k) {
+    pushes[k] = P[k] > 0.0 || d[k] > 0.0;
+    if (pushes[k]) active.push_back(contacts[static_cast<std::size_t>(k)]), where.push_back(k);
+  }
+  Eigen::VectorXd exact = P;
+  if (!where.empty()) {
+    Eigen::VectorXd r(static_cast<Eigen::Index>(where.size()));
+    for (std::size_t i = 0; i < where.size(); ++i) r[static_cast<Eigen::Index>(i)] = d[where[i]];
+    const Eigen::VectorXd x = solve_on(scene, fibres, active, r);
+    for (std::size_t i = 0; i < where.size(); ++i)
+      exact[where[i]] += x[static_cast<Eigen::Index>(i)];
+  }
+  ++estimate.passes;
+  const double residual = std::max(contact_residual(P, -d), 1e-300);
+  const Eigen::VectorXd gap = overlaps(all, geometry, contacts, exact, nullptr);
+  if (switching_settled(exact, gap, pushes, kProblemShare * residual))
+    return exact.cwiseMax(0.0);
+  exact = P;
+  ++estimate.passes;
+  estimate.settled =
+      solve_from(all, fibres, contacts, d, kProblemShare * residual, exact) && estimate.settled;
+  return exact;
+}
+
+}  // namespace
+
+ErrorEstimate estimate_iteration_error(const Scene& scene, const std::vector<Fibre>& fibres,
+                                       const ContactGeometry& geometry,
+                                       const std::vector<Contact>& contacts,
+                                       std::vector<Contact>* answer_out) {
+  const auto start = std::chrono::steady_clock::now();
+  ErrorEstimate estimate;
+  const Eigen::Index n = static_cast<Eigen::Index>(contacts.size());
+  if (n == 0) return estimate;
+  Superposition all(fibres, scene);
+  all.attach(contacts);
+  Eigen::VectorXd P(n);
+  for (Eigen::Index k = 0; k < n; ++k) P[k] = contacts[static_cast<std::size_t>(k)].force;
+  double energy = 0.0, exact_energy = 0.0;
+  const Eigen::VectorXd d = overlaps(all, geometry, contacts, P, &energy);
+  Eigen::VectorXd exact = linearised_answer(scene, fibres, all, geometry, contacts, P, d, estimate);
+  // The deformed contact: the answer's normals point between its own displaced centres, so the
+  // normals turn to those of the corrected state and the problem linearised about them is solved
+  // again from there, until they stop turning.
+  std::vector<Contact> answer = contacts;
+  for (int pass = 0; geometry.deformed() && pass < kGeometricPasses; ++pass) {
+    std::vector<Eigen::Vector3d> u_a, u_b;
+    all.contact_displacements(answer, forces_on_a(answer, exact), true, u_a, u_b);
+    double turned = 0.0;
+    for (std::size_t k = 0; k < answer.size(); ++k) {
+      const Eigen::Vector3d before = answer[k].normal;
+      geometry.follow(answer[k], u_a[k], u_b[k]);
+      turned = std::max(turned, (answer[k].normal - before).norm());
+    }
+    if (turned < kUnturned) break;
+    const Eigen::VectorXd d_turned = overlaps(all, geometry, answer, exact, nullptr);
+    exact = linearised_answer(scene, fibres, all, geometry, answer, exact, d_turned, estimate);
+  }
+  overlaps(all, geometry, answer, exact, &exact_energy);
+  estimate.force = pair_force_error(contacts, P, answer, exact);
+  estimate.deflection = deflection_error(scene, all, contacts, P, answer, exact);
+  estimate.energy =
+      exact_energy != 0.0 ? std::fabs(energy - exact_energy) / std::fabs(exact_energy) : 0.0;
+  if (answer_out) {
+    for (Eigen::Index k = 0; k < n; ++k) answer[static_cast<std::size_t>(k)].force = exact[k];
+    *answer_out = std::move(answer);
+  }
+  estimate.time_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return estimate;
+}
+
+}  // namespace fibrecheck
