@@ -36,7 +36,8 @@ std::vector<Eigen::Vector3d> forces_on_a(const std::vector<Contact>& contacts,
   for (std::size_t k = 0; k < contacts.size(); ++k) {
     const Contact& c = contacts[k];
     const double p = P[static_cast<Eigen::Index>(k)];
-    f[k] = (c.kind == ContactKind::wall ? p : -p) * c.normal + (p > 0.0 ? c.friction : Eigen::Vector3d::Zero());
+    f[k] = (c.kind == ContactKind::wall ? p : -p) * c.normal +
+           (p > 0.0 ? c.friction : Eigen::Vector3d::Zero());
   }
   return f;
 }
@@ -125,8 +126,9 @@ double pair_force_error(const std::vector<Contact>& contacts, const Eigen::Vecto
   const std::vector<Eigen::Vector3d> f = forces_on_a(contacts, P), g = forces_on_a(answer, exact);
   for (std::size_t k = 0; k < contacts.size(); ++k) {
     const Contact& c = contacts[k];
-    auto& [mine, theirs] = pairs.try_emplace(std::make_tuple(static_cast<int>(c.kind), c.a, c.b),
-                                             Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero())
+    auto& [mine, theirs] = pairs
+                               .try_emplace(std::make_tuple(static_cast<int>(c.kind), c.a, c.b),
+                                            Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero())
                                .first->second;
     mine += f[k];
     theirs += g[k];
@@ -166,7 +168,6 @@ double deflection_error(const Scene& scene, const Superposition& all,
   return largest > 0.0 ? difference / largest : 0.0;
 }
 
-
 /// The answer of the problem linearised about the contacts' normals, from forces `P` with overlaps
 /// `d`: the residual equation on the pushing set, or where that set switches, the contact problem
 /// solved from `P`. Counts its passes into `estimate` and says whether it settled.
@@ -193,8 +194,7 @@ Eigen::VectorXd linearised_answer(const Scene& scene, const std::vector<Fibre>& 
   ++estimate.passes;
   const double residual = std::max(contact_residual(P, -d), 1e-300);
   const Eigen::VectorXd gap = overlaps(all, geometry, contacts, exact, nullptr);
-  if (switching_settled(exact, gap, pushes, kProblemShare * residual))
-    return exact.cwiseMax(0.0);
+  if (switching_settled(exact, gap, pushes, kProblemShare * residual)) return exact.cwiseMax(0.0);
   exact = P;
   ++estimate.passes;
   estimate.settled =
@@ -245,8 +245,7 @@ ErrorEstimate estimate_iteration_error(const Scene& scene, const std::vector<Fib
     for (Eigen::Index k = 0; k < n; ++k) answer[static_cast<std::size_t>(k)].force = exact[k];
     *answer_out = std::move(answer);
   }
-  estimate.time_s =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  estimate.time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return estimate;
 }
 

@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "iterative_solver.h"
 #include "comparison.h"
+#include "iterative_solver.h"
 #include "metrics.h"
 #include "reference_solver.h"
 #include "scene.h"
@@ -20,8 +20,8 @@ namespace {
 
 std::vector<Scene> estimate_scenes() {
   std::vector<Scene> scenes;
-  for (const char* name : {"parallel_fibres", "small_tow_19", "two_fibres_crossing",
-                           "compaction_test"})
+  for (const char* name :
+       {"parallel_fibres", "small_tow_19", "two_fibres_crossing", "compaction_test"})
     scenes.push_back(read_scene(std::string(FIBRECHECK_SCENES_DIR) + "/" + name + ".json"));
   // Unequal stiffness (EI ratio 2.5) under a uniform load: the seed's overlap criterion leaves a
   // percent in the line force at t_d = 1e-10 mm.
@@ -67,8 +67,7 @@ TEST(ErrorEstimate, EffectivityIndexLiesBetweenHalfAndThree) {
     SCOPED_TRACE(scene.name + ", " + to_string(scene.contact.geometry));
     const Result exact = solve_reference(scene);
     ASSERT_EQ(exact.status, Status::converged) << exact.message;
-    std::vector<double> tolerances = {1e-3 * scene.fibres[0].radius,
-                                      1e-5 * scene.fibres[0].radius};
+    std::vector<double> tolerances = {1e-3 * scene.fibres[0].radius, 1e-5 * scene.fibres[0].radius};
     if (scene.solver.overlap_tolerance) tolerances.push_back(*scene.solver.overlap_tolerance);
     for (double td : tolerances) {
       SCOPED_TRACE(td);
