@@ -19,6 +19,9 @@ constexpr int kMaxGeometricUpdates = 200;
 constexpr int kMaxCrossingMoves = 5;
 /// A change of the unit normals below which the next solve would be the last one again.
 constexpr double kUnturned = 1e-12;
+/// A change of the unit normals below which the answer's forces act along its own displaced
+/// centres: the seed's test alone cannot tell, since the gaps close about the wrong normals too.
+constexpr double kSettledTurn = 1e-8;
 
 }  // namespace
 
@@ -46,14 +49,15 @@ void ReferenceSolver::assemble_about_normals() {
 // After an exact solve on given normals: the finite-element fibres under its forces, the normals
 // (and tangents, and the crossings' places) moved to their displaced centres, and the problem
 // linearised about them solved again, until the answer meets the seed's test in the deformed
-// configuration to 1e-3 of the scene's tolerance (or to the round-off of the finite elements, or
-// until the normals no longer turn and the residual left is the linearised solve's own). A
-// crossing whose centres would come closer by a tenth of the tolerance elsewhere needs a new mesh:
-// the outer loop takes it from there.
+// configuration to 1e-3 of the scene's tolerance (or to the round-off of the finite elements) with
+// normals that no longer turn by more than kSettledTurn (or whose turn stalls just above it, at the
+// round-off of the finite elements; or that no longer turn at all, and the residual left is the
+// linearised solve's own). A crossing whose centres would come closer by a tenth of the
+// tolerance elsewhere needs a new mesh: the outer loop takes it from there.
 void ReferenceSolver::follow_the_deformed_fibres() {
   const double settled = std::max(threshold_, 1e-3 * tolerance_);
   std::vector<Eigen::Vector3d> u_a, u_b;
-  double residual = INFINITY, before = INFINITY;
+  double residual = INFINITY, before = INFINITY, turned_before = INFINITY;
   for (int update = 0; update < kMaxGeometricUpdates; ++update) {
     deform();
     displacements_at_contacts(u_a, u_b);
@@ -66,17 +70,22 @@ void ReferenceSolver::follow_the_deformed_fibres() {
       return;
     }
     residual = deformed_residual(u_a, u_b);
-    // Settled, or within t_d and no longer falling: the round-off of the finite elements.
-    if (residual <= settled || (residual < tolerance_ && residual > 0.5 * before)) return;
-    before = residual;
     double turned = 0.0;
-    for (std::size_t k = 0; k < contacts_.size(); ++k) {
-      const Eigen::Vector3d normal = contacts_[k].normal;
-      detector_.geometry().follow(contacts_[k], u_a[k], u_b[k]);
-      turned = std::max(turned, (contacts_[k].normal - normal).norm());
+    std::vector<Contact> followed = contacts_;
+    for (std::size_t k = 0; k < followed.size(); ++k) {
+      detector_.geometry().follow(followed[k], u_a[k], u_b[k]);
+      turned = std::max(turned, (followed[k].normal - contacts_[k].normal).norm());
     }
     // Normals that did not turn give the same solve again: what is left is that solve's own.
     if (turned <= kUnturned) return;
+    // Settled, or within t_d and no longer falling: the round-off of the finite elements.
+    const bool gaps_closed =
+        residual <= settled || (residual < tolerance_ && residual > 0.5 * before);
+    const bool turn_stalled = turned < 1e2 * kSettledTurn && turned > 0.5 * turned_before;
+    if (gaps_closed && (turned <= kSettledTurn || turn_stalled)) return;
+    before = residual;
+    turned_before = turned;
+    contacts_ = std::move(followed);
     ++geometric_updates_;
     assemble_about_normals();
     solve();

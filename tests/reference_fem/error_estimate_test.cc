@@ -5,6 +5,8 @@
 // settings.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include <string>
 #include <vector>
 
@@ -51,12 +53,16 @@ std::vector<Scene> both_geometries(const std::vector<Scene>& scenes) {
   return out;
 }
 
-// The true error is known only as well as the reference knows the answer: to its round-off on the
-// linearised contact, and on the deformed one to how far its sequence of solves settles — the two
-// solvers, both converged, differ by up to 8e-6 in deflection there (compaction_test at t_d =
-// 1e-10 mm).
-double floor_of(const Scene& scene) {
-  return scene.contact.geometry == ContactGeometryModel::linearised ? 1e-10 : 1e-5;
+// The true error is known only as well as the reference knows the answer: to its round-off, but
+// where the deformed fibres cross, only to where each solver settles the crossing's place. The
+// seed's test measures gaps, and a gap changes at second order with the place: compaction_test
+// at t_d = 1e-10 mm, both solvers converged, has its crossings at L/6 2.5e-7 of a length apart,
+// 1.1e-6 in force and 8.3e-6 in deflection.
+double floor_of(const Scene& scene, const Result& exact) {
+  if (scene.contact.geometry == ContactGeometryModel::linearised) return 1e-10;
+  const bool crossings = std::any_of(exact.contacts.begin(), exact.contacts.end(),
+                                     [](const ContactResult& c) { return c.kind == "point"; });
+  return crossings ? 1e-5 : 1e-10;
 }
 
 // Under the seed's criterion at t_d of 1e-3 and 1e-5 of the smallest radius (and the scene's own):
@@ -78,12 +84,13 @@ TEST(ErrorEstimate, EffectivityIndexLiesBetweenHalfAndThree) {
       ASSERT_EQ(run.status, Status::converged) << run.message;
       ASSERT_TRUE(run.error_estimate.has_value());
       const Errors truth = measure_errors(run, exact, scene.name).errors;
-      const Errors index = effectivity(estimated_errors(run), truth, floor_of(scene));
-      if (truth.force > floor_of(scene)) {
+      const double floor = floor_of(scene, exact);
+      const Errors index = effectivity(estimated_errors(run), truth, floor);
+      if (truth.force > floor) {
         EXPECT_GE(index.force, 0.5) << "force error " << truth.force;
         EXPECT_LE(index.force, 3.0) << "force error " << truth.force;
       }
-      if (truth.deflection > floor_of(scene)) {
+      if (truth.deflection > floor) {
         EXPECT_GE(index.deflection, 0.5) << "deflection error " << truth.deflection;
         EXPECT_LE(index.deflection, 3.0) << "deflection error " << truth.deflection;
       }
