@@ -31,11 +31,15 @@ constexpr std::pair<Status, const char*> kStatusNames[] = {
     {Status::diverged, "diverged"},
     {Status::unresolvable, "unresolvable"}};
 constexpr std::pair<Criterion, const char*> kCriterionNames[] = {
-    {Criterion::contact, "contact"},       {Criterion::energy, "energy"},
+    {Criterion::contact, "contact"},
+    {Criterion::energy, "energy"},
     {Criterion::force, "force"},
-    {Criterion::active_set, "active_set"}, {Criterion::max_iterations, "max_iterations"},
-    {Criterion::growth, "growth"},         {Criterion::oscillation, "oscillation"},
-    {Criterion::non_finite, "non_finite"}, {Criterion::unresolvable, "unresolvable"}};
+    {Criterion::active_set, "active_set"},
+    {Criterion::max_iterations, "max_iterations"},
+    {Criterion::growth, "growth"},
+    {Criterion::oscillation, "oscillation"},
+    {Criterion::non_finite, "non_finite"},
+    {Criterion::unresolvable, "unresolvable"}};
 
 template <typename Enum, std::size_t N>
 const char* name_of(Enum value, const std::pair<Enum, const char*> (&names)[N]) {
@@ -86,9 +90,9 @@ bool replace_non_finite(Result& r) {
         &r.wall_time_s, &r.deformed_test.gap_where_pushing, &r.deformed_test.overlap_where_free})
     scrub(*x);
   // An estimate that is not a number is no estimate: it is dropped, not set to zero.
-  if (r.error_estimate && !(std::isfinite(r.error_estimate->deflection) &&
-                            std::isfinite(r.error_estimate->force) &&
-                            std::isfinite(r.error_estimate->energy)))
+  if (r.error_estimate &&
+      !(std::isfinite(r.error_estimate->deflection) && std::isfinite(r.error_estimate->force) &&
+        std::isfinite(r.error_estimate->energy)))
     r.error_estimate.reset();
   if (r.finite_elements) {
     scrub(r.finite_elements->complementarity_residual);
@@ -149,6 +153,14 @@ std::string brief_report(const Result& r) {
       << " N*mm (exact 1/2 sum P*v); max overlap " << r.max_overlap << " mm, gap-force residual "
       << r.gap_force_residual + 0.0 /* −0 printed as 0 */ << " mm; " << r.contacts.size()
       << " contact pairs";
+  if (r.error_estimate)
+    out << "\nestimated iteration error: deflection " << r.error_estimate->deflection << ", force "
+        << r.error_estimate->force << ", energy " << r.error_estimate->energy << " (relative)";
+  if (r.slicing_estimate)
+    out << "\nestimated slicing error (" << r.slicing_estimate->slices << " against "
+        << r.slicing_estimate->coarse_slices << " slices): deflection "
+        << r.slicing_estimate->deflection << ", force " << r.slicing_estimate->force << ", energy "
+        << r.slicing_estimate->energy << " (relative)";
   if (!r.message.empty()) out << "\n" << r.message;
   return out.str();
 }
@@ -178,12 +190,31 @@ json result_to_json(const Result& r) {
                         {"overlap_where_free", r.deformed_test.overlap_where_free}};
   j["geometric_updates"] = r.geometric_updates;
   if (r.error_estimate)
-    j["error_estimate"] = {{"deflection", r.error_estimate->deflection},
-                           {"force", r.error_estimate->force},
-                           {"energy", r.error_estimate->energy},
-                           {"passes", r.error_estimate->passes},
-                           {"settled", r.error_estimate->settled},
-                           {"wall_time_s", r.error_estimate->time_s}};
+    j["error_estimate"] = {
+        {"deflection", r.error_estimate->deflection}, {"force", r.error_estimate->force},
+        {"energy", r.error_estimate->energy},         {"passes", r.error_estimate->passes},
+        {"settled", r.error_estimate->settled},       {"wall_time_s", r.error_estimate->time_s}};
+  if (r.slicing_estimate) {
+    const SlicingEstimate& e = *r.slicing_estimate;
+    j["slicing_error_estimate"] = {{"deflection", e.deflection},
+                                   {"force", e.force},
+                                   {"energy", e.energy},
+                                   {"slices", e.slices},
+                                   {"coarse_slices", e.coarse_slices},
+                                   {"orders",
+                                    {{"deflection", e.deflection_order},
+                                     {"force", e.force_order},
+                                     {"energy", e.energy_order}}},
+                                   {"wall_time_s", e.time_s}};
+    if (e.coarser_slices > 0) {
+      auto number = [](double x) { return std::isfinite(x) ? json(x) : json(nullptr); };
+      j["slicing_error_estimate"]["coarser_slices"] = e.coarser_slices;
+      j["slicing_error_estimate"]["observed_orders"] = {
+          {"deflection", number(e.observed_deflection_order)},
+          {"force", number(e.observed_force_order)},
+          {"energy", number(e.observed_energy_order)}};
+    }
+  }
   if (r.finite_elements) {
     j["complementarity_residual"] = r.finite_elements->complementarity_residual;
     j["active_set_iterations"] = r.finite_elements->active_set_iterations;
@@ -299,6 +330,29 @@ Result result_from_json(const json& j, const std::string& source) {
       estimate.energy = e.at("energy").get<double>();
       estimate.passes = e.value("passes", 0);
       estimate.settled = e.value("settled", true);
+      estimate.time_s = e.value("wall_time_s", 0.0);
+    }
+    if (j.contains("slicing_error_estimate")) {
+      const json& e = j["slicing_error_estimate"];
+      SlicingEstimate& estimate = r.slicing_estimate.emplace();
+      estimate.deflection = e.at("deflection").get<double>();
+      estimate.force = e.at("force").get<double>();
+      estimate.energy = e.at("energy").get<double>();
+      estimate.slices = e.value("slices", 0);
+      estimate.coarse_slices = e.value("coarse_slices", 0);
+      if (e.contains("orders")) {
+        estimate.deflection_order = e["orders"].value("deflection", 0.0);
+        estimate.force_order = e["orders"].value("force", 0.0);
+        estimate.energy_order = e["orders"].value("energy", 0.0);
+      }
+      estimate.coarser_slices = e.value("coarser_slices", 0);
+      if (e.contains("observed_orders")) {
+        auto number = [](const json& x) { return x.is_number() ? x.get<double>() : NAN; };
+        const json& o = e["observed_orders"];
+        estimate.observed_deflection_order = number(o.value("deflection", json()));
+        estimate.observed_force_order = number(o.value("force", json()));
+        estimate.observed_energy_order = number(o.value("energy", json()));
+      }
       estimate.time_s = e.value("wall_time_s", 0.0);
     }
     if (j.contains("unknowns")) {

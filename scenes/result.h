@@ -2,6 +2,7 @@
 
 #include <Eigen/Core>
 #include <array>
+#include <cmath>
 #include <nlohmann/json_fwd.hpp>
 #include <optional>
 #include <string>
@@ -66,10 +67,10 @@ enum class Status {
 
 /// What ended the run.
 enum class Criterion {
-  contact,         ///< every contact just touching: |d| < t_d where a force acts, d < t_d elsewhere
-  energy,          ///< the last n_i strain energies within t_U of the current one
-  force,           ///< every contact just touching and the estimated force error within its tolerance
-  active_set,      ///< the reference's active set solved exactly and the candidates settled
+  contact,     ///< every contact just touching: |d| < t_d where a force acts, d < t_d elsewhere
+  energy,      ///< the last n_i strain energies within t_U of the current one
+  force,       ///< every contact just touching and the estimated force error within its tolerance
+  active_set,  ///< the reference's active set solved exactly and the candidates settled
   max_iterations,  ///< the iteration cap
   growth,          ///< the residual grew without bound
   oscillation,     ///< no progress for a long stretch (c ≥ 2/λmax(W))
@@ -133,6 +134,25 @@ struct ErrorEstimate {
   double time_s = 0.0;  ///< what making it cost (`wall_time_s`)
 };
 
+/// An estimate of the slicing error of a result: how far its deflections, contact forces and
+/// strain energy lie from those of the continuous line contact, from a second run of the scene at
+/// fewer slices and the orders at which the slice study sees the errors fall (relative, as DESIGN
+/// §6 defines the errors).
+struct SlicingEstimate {
+  double deflection = 0.0;
+  double force = 0.0;
+  double energy = 0.0;
+  int slices = 0;         ///< of the result
+  int coarse_slices = 0;  ///< of the second run
+  /// The assumed orders p of error ∝ n^−p.
+  double deflection_order = 0.0, force_order = 0.0, energy_order = 0.0;
+  /// A check of them (`observed_orders`): the orders the differences show from a third run at
+  /// `coarser_slices` (NaN where a difference is zero or no third run was made).
+  int coarser_slices = 0;
+  double observed_deflection_order = NAN, observed_force_order = NAN, observed_energy_order = NAN;
+  double time_s = 0.0;  ///< what the further runs cost (`wall_time_s`)
+};
+
 /// How well a frictional state meets Coulomb's law (μ > 0): the largest slip at a sticking point
 /// (mm), the largest slip not along its friction force at a slipping point (mm, the part across F
 /// and any part against it), and the largest excess of |F| over μN (N).
@@ -177,6 +197,8 @@ struct Result {
   DeformedTest deformed_test;
   /// Iterative results: the estimate of their iteration error, from the final state alone.
   std::optional<ErrorEstimate> error_estimate;
+  /// On request (`solve --estimate-slicing`): the estimate of its slicing error.
+  std::optional<SlicingEstimate> slicing_estimate;
   /// Deformed contact: how often the normals (and crossings) were made to follow the displaced
   /// centres between linearised problems (the reference: its exact solves beyond the first).
   long geometric_updates = 0;

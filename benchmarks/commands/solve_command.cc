@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <iomanip>
@@ -13,6 +14,7 @@
 #include "iterative_solver.h"
 #include "result.h"
 #include "scene.h"
+#include "slicing_estimate.h"
 #include "vtk_writer.h"
 
 namespace fibrecheck {
@@ -55,6 +57,62 @@ void print_table(const std::vector<Result>& results, const std::vector<Scene>& s
   }
 }
 
+/// The slices of the second run of a slicing estimate: as asked, else half the scene's.
+int coarse_slices_for(const SolveArguments& args, const Scene& scene) {
+  const int n = scene.contact.slices;
+  const int m = args.coarse_slices > 0 ? args.coarse_slices : n / 2;
+  if (n < 2)
+    throw InputError(
+        scene.source, "contact.slices",
+        "a slicing estimate needs at least 2 slices (the scene has " + std::to_string(n) + ")");
+  if (m >= n)
+    throw InputError("command line", "--coarse-slices",
+                     "must be below the scene's " + std::to_string(n) + " slices");
+  return m;
+}
+
+/// The scene at `slices` slices, solved with the options of the first run.
+Result solve_at(const Scene& scene, const SolverOptions& options, int slices) {
+  Scene coarse = scene;
+  coarse.contact.slices = slices;
+  SolverOptions o = SolverOptions::from_scene(coarse);
+  o.progress = options.progress;
+  o.progress_interval_s = options.progress_interval_s;
+  return solve_iteratively(coarse, o);
+}
+
+/// Solves the scene again at fewer slices and estimates the first run's slicing error from the
+/// difference, then once more at fewer still to check the orders it assumes; a run that does not
+/// converge gives no estimate (or no check), only a warning.
+void estimate_slicing(const Scene& scene, const SolverOptions& options, int coarse_slices,
+                      Result& result) {
+  auto failed = [&result](int slices, const Result& run) {
+    result.warnings.push_back("slicing estimate: the run at " + std::to_string(slices) +
+                              " slices ended " + to_string(run.status) + " (" + run.message + ")");
+  };
+  const Result coarse = solve_at(scene, options, coarse_slices);
+  if (coarse.status != Status::converged) return failed(coarse_slices, coarse);
+  SlicingEstimate& e = result.slicing_estimate.emplace(
+      estimate_slicing_error(result, coarse, scene.contact.slices, coarse_slices));
+  const int coarser_slices =
+      static_cast<int>(std::lround(double(coarse_slices) * coarse_slices / scene.contact.slices));
+  if (coarser_slices < 1 || coarser_slices >= coarse_slices) return;
+  const Result coarser = solve_at(scene, options, coarser_slices);
+  if (coarser.status != Status::converged) return failed(coarser_slices, coarser);
+  observe_slicing_orders(e, result, coarse, coarser, coarser_slices);
+  if (!slicing_orders_hold(e)) {
+    std::ostringstream why;
+    why.precision(3);
+    why << "slicing estimate uncertain: between " << coarser_slices << ", " << coarse_slices
+        << " and " << scene.contact.slices << " slices the errors fall at order "
+        << e.observed_force_order << " in force and " << e.observed_deflection_order
+        << " in deflection, not " << e.force_order << " and " << e.deflection_order
+        << " (fibres that touch along part of a line change their touching stretch with the "
+           "slices)";
+    result.warnings.push_back(why.str());
+  }
+}
+
 }  // namespace
 
 int run_solve(const SolveArguments& args) {
@@ -81,6 +139,7 @@ int run_solve(const SolveArguments& args) {
     SolverOptions o = SolverOptions::from_scene(scene);
     std::string why;
     if (!o.is_valid(&why)) throw InputError(path, "solver", why);
+    if (args.estimate_slicing) coarse_slices_for(args, scene);
     scenes.push_back(std::move(scene));
     options.push_back(std::move(o));
   }
@@ -101,12 +160,24 @@ int run_solve(const SolveArguments& args) {
       o.progress_interval_s = terminal ? 0.5 : 5.0;
     }
     Result result = solve_iteratively(scene, o);
+    if (args.estimate_slicing && result.status == Status::converged) {
+      const int m = coarse_slices_for(args, scene);
+      if (!args.quiet) {
+        if (terminal) std::cerr << "\r\033[K";
+        std::cout << "  estimating the slicing error: the scene again at " << m << " slices (and "
+                  << std::lround(double(m) * m / scene.contact.slices) << " to check)" << std::endl;
+      }
+      estimate_slicing(scene, o, m, result);
+    }
     if (!args.quiet && terminal) std::cerr << "\r\033[K";
     if (!args.quiet) {
       std::cout << "  rule " << result.rule << ": c = " << result.c
                 << " N/mm per point contact (slices: c/n under rule seed), stable below about "
                 << result.c_stable_limit << " N/mm (2/lambda_max(W)"
-                << (result.rule == to_string(UpdateRule::seed) ? " of D^1/2 W D^1/2, D the slice weights" : "") << ")\n";
+                << (result.rule == to_string(UpdateRule::seed)
+                        ? " of D^1/2 W D^1/2, D the slice weights"
+                        : "")
+                << ")\n";
       std::istringstream report(brief_report(result));
       for (std::string line; std::getline(report, line);) std::cout << "  " << line << "\n";
       for (const std::string& w : result.warnings) std::cout << "  warning: " << w << "\n";
@@ -133,6 +204,13 @@ CLI::App* add_solve_command(CLI::App& app, SolveArguments& args) {
   solve->add_option("--out-dir", args.out_dir, "Folder for SCENE_NAME.result.json files");
   solve->add_option("--slices", args.slices, "Cross-sections n (overrides contact.slices)")
       ->check(CLI::Range(1, 1000000));
+  solve->add_flag("--estimate-slicing", args.estimate_slicing,
+                  "Also estimate the slicing error, from a second run at fewer slices");
+  solve
+      ->add_option("--coarse-slices", args.coarse_slices,
+                   "Slices of that second run (default half the scene's)")
+      ->check(CLI::Range(1, 1000000))
+      ->needs("--estimate-slicing");
   std::string rules;
   for (const std::string& name : update_rule_names()) rules += (rules.empty() ? "" : " | ") + name;
   solve->add_option("--rule", args.rule, "Force update rule: " + rules)

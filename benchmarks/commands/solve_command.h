@@ -7,11 +7,14 @@
 namespace fibrecheck {
 
 /// `fibrecheck solve SCENE... [--out RESULT | --out-dir DIR] [--slices N] [--rule R] [--c X]
-/// [--vtk FILE.vtp] [--quiet] [--help-scene]`: the iterative solver on each scene.
+/// [--estimate-slicing [--coarse-slices M]] [--vtk FILE.vtp] [--quiet] [--help-scene]`: the
+/// iterative solver on each scene.
 struct SolveArguments {
   std::vector<std::string> scenes;
   std::string out, out_dir, vtk, rule;
   int slices = 0;
+  bool estimate_slicing = false;
+  int coarse_slices = 0;  ///< 0: half the scene's slices
   double c = 0.0;
   bool quiet = false;
   bool help_scene = false;

@@ -93,6 +93,33 @@ TEST_F(Cli, CommandLineOverridesRuleSlicesAndC) {
   EXPECT_EQ(plain["contacts"][0]["points"].size(), 100u);
 }
 
+// The slicing estimate of the parallel fibres (100 slices against 50): the line force's first-order
+// slicing error, 2.4e-3 below the closed form q·EI_B/(EI_A + EI_B) (the slicing estimate's own test
+// checks it against the closed form; here, that the program writes and prints it). A coarse count
+// not below the scene's is bad input.
+TEST_F(Cli, SolveEstimatesTheSlicingErrorOnRequest) {
+  const Outcome r =
+      run("solve " + scene("parallel_fibres") + " --estimate-slicing --out " + dir_ + "r.json");
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("estimated slicing error (100 against 50 slices)"), std::string::npos)
+      << r.out;
+  const json e = json::parse(slurp(dir_ + "r.json"))["slicing_error_estimate"];
+  EXPECT_EQ(e["coarse_slices"], 50);
+  EXPECT_EQ(e["orders"]["force"], 1.0);
+  EXPECT_EQ(e["coarser_slices"], 25);
+  EXPECT_NEAR(e["observed_orders"]["force"].get<double>(), 1.0, 0.1);
+  EXPECT_EQ(r.out.find("slicing estimate uncertain"), std::string::npos) << r.out;
+  EXPECT_GT(e["force"].get<double>(), 1.2e-3);
+  EXPECT_LT(e["force"].get<double>(), 4.8e-3);
+  run("solve " + scene("parallel_fibres") + " --out " + dir_ + "plain.json -q");
+  EXPECT_FALSE(json::parse(slurp(dir_ + "plain.json")).contains("slicing_error_estimate"));
+  const Outcome bad = run("solve " + scene("parallel_fibres") +
+                          " --estimate-slicing --coarse-slices 100 --out " + dir_ + "bad.json");
+  EXPECT_EQ(bad.code, 2) << bad.err;
+  EXPECT_NE(bad.err.find("--coarse-slices"), std::string::npos) << bad.err;
+  EXPECT_FALSE(fs::exists(dir_ + "bad.json"));
+}
+
 TEST_F(Cli, BadInputExitsTwoWithFileFieldReasonAndWritesNothing) {
   json negative = crossing();
   negative["fibres"][1]["radius"] = -0.01;
