@@ -149,15 +149,16 @@ TEST_F(ReportFromHarness, EveryStudyIsReadAndReported) {
   ASSERT_EQ(data.scale_studies.size(), 1u);
   const fs::path out = *folder_ / "report";
   const ReportSummary summary = write_report(data, out.string());
-  // Comparison, slices, speed-up, step sweep, stiffness, catalogue, compaction fits and
-  // agreement, scale.
-  EXPECT_EQ(summary.tables, 9);
+  // Comparison, slices, speed-up, effectivity, step sweep, stiffness, catalogue, compaction fits
+  // and agreement, scale.
+  EXPECT_EQ(summary.tables, 10);
   EXPECT_TRUE(summary.missing.empty()) << summary.missing.front();
   const std::string md = slurp(out / "report.md");
   for (const char* section : {"## Accuracy on each scene",
                               "## Accuracy against the number of "
                               "slices",
-                              "## Accuracy against run time", "## Stability of the force update",
+                              "## Accuracy against run time", "## Error estimates",
+                              "## Stability of the force update",
                               "## Compaction", "## Scale"})
     EXPECT_NE(md.find(section), std::string::npos) << section;
   // The figures of the compaction study, its kept state at step 1 included, and of the scale
