@@ -149,7 +149,7 @@ ComparisonRecord record_of(const Comparison& c,
   r.iteration = c.iteration.errors;
   if (c.comparable) {
     r.estimate = estimated_errors(c.user);
-    r.effectivity = effectivity(r.estimate, r.iteration);
+    r.effectivity = effectivity(r.estimate, r.iteration, measurable_above(c.agreement.errors));
   }
   r.slicing = c.slicing.errors;
   r.agreement = c.agreement.errors;
@@ -201,7 +201,8 @@ std::string comparison_table(const std::vector<Comparison>& comparisons) {
     }
     // The estimate and its effectivity on the force, the error the estimate is made for.
     const Errors estimate = estimated_errors(c.user);
-    const double index = effectivity(estimate, c.iteration.errors).force;
+    const double index =
+        effectivity(estimate, c.iteration.errors, measurable_above(c.agreement.errors)).force;
     std::snprintf(line, sizeof line,
                   "%-22s %-12s %9.2e %9.2e %9.2e  %9.2e %9.2e %9.2e  %9.2e %6.2f  %8.3f %8.3f\n",
                   c.scene.c_str(), c.user.rule.c_str(), c.total.errors.deflection,

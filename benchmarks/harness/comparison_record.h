@@ -41,7 +41,8 @@ struct ComparisonRecord {
   Errors geometry;
   std::string geometry_model = "deformed";
   /// `error_estimate`: the user's run's own estimate of its iteration error; `effectivity`: that
-  /// estimate over the iteration error measured (NaN where either is missing or the error ≤ 1e-10).
+  /// estimate over the iteration error measured (NaN where either is missing or the error is
+  /// within what the truth can tell, measurable_above of the agreement).
   Errors estimate{NAN, NAN, NAN}, effectivity{NAN, NAN, NAN};
   std::vector<PairError> pairs;  ///< each pair's force of the user's run is `force_user`
   /// Files beside compare.json by label ("scene", "user", the runs' labels).

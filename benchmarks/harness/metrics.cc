@@ -133,6 +133,18 @@ Errors estimated_errors(const Result& run) {
   return {run.error_estimate->deflection, run.error_estimate->force, run.error_estimate->energy};
 }
 
+Errors effectivity(const Errors& estimate, const Errors& truth, const Errors& floor) {
+  auto index = [](double e, double t, double f) { return t > f ? e / t : NAN; };
+  return {index(estimate.deflection, truth.deflection, floor.deflection),
+          index(estimate.force, truth.force, floor.force),
+          index(estimate.energy, truth.energy, floor.energy)};
+}
+
+Errors measurable_above(const Errors& agreement) {
+  auto floor = [](double a) { return std::max(1e-10, 3.0 * a); };
+  return {floor(agreement.deflection), floor(agreement.force), floor(agreement.energy)};
+}
+
 Errors effectivity(const Errors& estimate, const Errors& truth, double floor) {
   auto index = [floor](double e, double t) { return t > floor ? e / t : NAN; };
   return {index(estimate.deflection, truth.deflection), index(estimate.force, truth.force),

@@ -56,6 +56,16 @@ Errors estimated_errors(const Result& run);
 /// true error is at most `floor` (1e-10: round-off of the reference, nothing to estimate) or the
 /// estimate is missing.
 Errors effectivity(const Errors& estimate, const Errors& truth, double floor = 1e-10);
+/// The same with a floor per metric.
+Errors effectivity(const Errors& estimate, const Errors& truth, const Errors& floor);
+
+/// What a ground truth can tell, per metric: the error below which an effectivity index is not
+/// measured. Two converged solutions of one problem by different methods (the iterative method
+/// converged far, the reference) differ by their round-off — on line contacts the compliance's
+/// condition number times the machine's precision, 1e-9 to 1e-8 in line force at 100 slices — and
+/// where deformed fibres cross, by where each settles the crossing's place; an error within three
+/// times that `agreement` is not the run's own. Never below 1e-10.
+Errors measurable_above(const Errors& agreement);
 
 /// Least-squares slope of log(error) against log(n) over the points with error > 0: the observed
 /// order of convergence p in error ∝ n^−p (returned as p; NaN with fewer than two usable points).

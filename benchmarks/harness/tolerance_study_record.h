@@ -24,7 +24,8 @@ struct TolerancePoint {
   Errors errors;
   bool pareto = false;  ///< on its method's Pareto front of error against time
   /// Iterative runs: their own estimate of the iteration error (`error_estimate`) and its
-  /// effectivity index against the reference on the same slices (NaN where the error ≤ 1e-10).
+  /// effectivity index against the reference on the same slices (NaN where the error is within
+  /// what that reference can tell, measurable_above).
   Errors estimate{NAN, NAN, NAN}, effectivity{NAN, NAN, NAN};
 };
 

@@ -124,5 +124,18 @@ TEST(Comparison, ErrorSplitsIntoIterationAndSlicing) {
               std::fabs(2.02e-4 - 2.1e-4) / 2.1e-4, 1e-12);
 }
 
+// The effectivity index is measured only above what the truth can tell: three times the
+// agreement of two converged solutions, never below 1e-10; below it, NaN.
+TEST(Effectivity, IsMeasuredOnlyAboveWhatTheTruthCanTell) {
+  const Errors floor = measurable_above({1e-9, 0.0, 2e-12});
+  EXPECT_DOUBLE_EQ(floor.deflection, 3e-9);
+  EXPECT_DOUBLE_EQ(floor.force, 1e-10);
+  EXPECT_DOUBLE_EQ(floor.energy, 1e-10);
+  const Errors index = effectivity({2e-9, 4e-6, 1e-9}, {2.5e-9, 2e-6, 5e-9}, floor);
+  EXPECT_TRUE(std::isnan(index.deflection));  // 2.5e-9 is within 3e-9
+  EXPECT_DOUBLE_EQ(index.force, 2.0);
+  EXPECT_DOUBLE_EQ(index.energy, 0.2);
+}
+
 }  // namespace
 }  // namespace fibrecheck
