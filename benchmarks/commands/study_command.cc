@@ -275,6 +275,11 @@ void add_compaction(CLI::App& study, StudyArguments& args) {
       ->add_option("--sections", o.sections,
                    "Steps whose state is kept for cross-section pictures (the last always is)")
       ->delimiter(',');
+  compaction
+      ->add_option("--frictional-reference-fibres", o.frictional_reference_fibres,
+                   "The reference with friction only on scenes of at most this many fibres (0: "
+                   "on every scene)")
+      ->check(CLI::NonNegativeNumber);
 }
 
 void add_scale(CLI::App& study, StudyArguments& args) {

@@ -55,8 +55,9 @@ struct Plan {
 };
 
 /// Both solvers frictionless in the scene's contact geometry and in the other; with the scene's
-/// μ > 0 also both with Coulomb friction and the iterative solver with the seed's rule.
-std::vector<Plan> plans_of(const Scene& scene) {
+/// μ > 0 also both with Coulomb friction (the reference where the scene is within
+/// `frictional_reference_fibres`) and the iterative solver with the seed's rule.
+std::vector<Plan> plans_of(const Scene& scene, const CompactionStudyOptions& options) {
   const ContactGeometryModel own = scene.contact.geometry;
   const ContactGeometryModel other = in_other_geometry(scene).contact.geometry;
   std::vector<Plan> plans = {{"iterative", 0.0, FrictionModel::coulomb, true, own},
@@ -65,7 +66,9 @@ std::vector<Plan> plans_of(const Scene& scene) {
   if (mu > 0.0) {
     plans.push_back({"iterative", mu, FrictionModel::coulomb, false, own});
     plans.push_back({"iterative", mu, FrictionModel::seed, false, own});
-    plans.push_back({"fem", mu, FrictionModel::coulomb, false, own});
+    const int limit = options.frictional_reference_fibres;
+    if (limit == 0 || scene.fibres.size() <= static_cast<std::size_t>(limit))
+      plans.push_back({"fem", mu, FrictionModel::coulomb, false, own});
   }
   plans.push_back({"iterative", 0.0, FrictionModel::coulomb, true, other});
   plans.push_back({"fem", 0.0, FrictionModel::coulomb, true, other});
@@ -203,7 +206,7 @@ std::vector<CompactionStudyScene> run_compaction_study(const std::vector<Scene>&
   const std::vector<Scene> scenes = stepped_scenes(input, options);
   StudyStore store(folder, "compaction_study");
   std::size_t total = 0;
-  for (const Scene& s : scenes) total += plans_of(s).size();
+  for (const Scene& s : scenes) total += plans_of(s, options).size();
   StudyProgress progress("compaction study", total, options.quiet);
   std::size_t index = 0;
   std::vector<CompactionStudyScene> out;
@@ -217,7 +220,7 @@ std::vector<CompactionStudyScene> run_compaction_study(const std::vector<Scene>&
     write_scene((dir / "scene.json").string(), scene);
     for (const FibreSpec& f : scene.fibres)
       study.youngs_modulus += f.youngs_modulus / static_cast<double>(scene.fibres.size());
-    for (const Plan& plan : plans_of(scene)) {
+    for (const Plan& plan : plans_of(scene, options)) {
       const CompactionRun planned = planned_run(plan);
       const std::string key = scene.name + "/" + planned.label();
       if (store.has(key)) {

@@ -134,6 +134,49 @@ TEST(CompactionStudy, WritesCurvesFitsAndAgreement) {
   EXPECT_NO_THROW(run_compaction_study({s}, options, solvers, folder));
 }
 
+// With friction: the iterative solver with Coulomb's law and with the seed's rule, and the
+// reference with Coulomb's law — but only on scenes within --frictional-reference-fibres.
+TEST(CompactionStudy, TheFrictionalReferenceOnlyWithinItsFibreLimit) {
+  Scene s;
+  s.name = "made_up_frictional_tow";
+  FibreSpec f;
+  f.id = "F";
+  f.end = {1, 0, 0};
+  f.radius = 0.01;
+  f.youngs_modulus = 80000;
+  s.fibres = {f, f};
+  s.fibres[1].id = "G";
+  WallSpec w;
+  w.id = "low";
+  s.walls = {w};
+  s.contact.friction = 0.2;
+  for (double F : {0.9, 0.8, 0.7}) s.steps.push_back({F, 1.0});
+  Solvers solvers;
+  solvers.iterative = [](const Scene& x) { return made_up(x, 0.0, false); };
+  solvers.reference_slices = [](const Scene& x) {
+    Result r = made_up(x, 1e-6, false);
+    r.solver = "fem";
+    return r;
+  };
+  auto frictional_references = [&](int limit) {
+    const std::string folder =
+        ::testing::TempDir() + "compaction_study_limit_" + std::to_string(limit);
+    std::filesystem::remove_all(folder);
+    CompactionStudyOptions options;
+    options.quiet = true;
+    options.frictional_reference_fibres = limit;
+    int count = 0, runs = 0;
+    for (const CompactionRun& r : run_compaction_study({s}, options, solvers, folder).at(0).runs) {
+      ++runs;
+      count += r.solver == "fem" && r.mu > 0.0;
+    }
+    return std::pair{runs, count};
+  };
+  EXPECT_EQ(frictional_references(0), std::pair(7, 1));
+  EXPECT_EQ(frictional_references(2), std::pair(7, 1));
+  EXPECT_EQ(frictional_references(1), std::pair(6, 0));
+}
+
 TEST(CompactionStudy, RefusesScenesWithoutWallsOrSteps) {
   Scene s;
   s.name = "bare";
