@@ -48,7 +48,7 @@ void ReportPage::csv(const std::string& name, const std::vector<std::string>& he
 ReportSummary ReportPage::finish(const std::vector<std::string>& sources) {
   std::ostringstream md;
   md << "# fibrecheck: the iterative fibre-contact method, checked\n\n"
-     << "Errors are relative and the worst over the scene (DESIGN §6): deflection, max over "
+     << "Errors are relative and the worst over the scene (docs/formats.md): deflection, max over "
         "fibres and samples of ‖u − u_truth‖ / max‖u_truth‖; force, max over contact pairs of "
         "the relative error of the total force; energy, of ½ΣP·v. The ground truth is the "
         "implicit finite-element reference with continuous line contact (on slices where a "
