@@ -62,7 +62,7 @@ ReportSummary ReportPage::finish(const std::vector<std::string>& sources) {
   }
   write_file_atomically((folder_ / "report.md").string(), md.str());
   std::ostringstream tex;
-  tex << "\\documentclass[a4paper,11pt]{article}\n\\usepackage[T1]{fontenc}\n"
+  tex << "\\documentclass[a4paper,11pt]{article}\n\\usepackage[T1]{fontenc}\n\\usepackage{lmodern}\n\\usepackage{amsmath}\n"
          "\\usepackage{booktabs}\n\\usepackage{graphicx}\n\\usepackage[margin=2.2cm]{geometry}\n"
          "\\title{fibrecheck: the iterative fibre-contact method, checked}\n\\date{}\n"
          "\\begin{document}\n\\maketitle\n"

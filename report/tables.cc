@@ -3,6 +3,8 @@
 #include <cmath>
 #include <cstdio>
 #include <sstream>
+#include <string>
+#include <utility>
 
 namespace fibrecheck {
 
@@ -28,6 +30,32 @@ std::string fixed3(double value) {
   out << value;
   return out.str();
 }
+
+namespace {
+
+/// The LaTeX of the UTF-8 symbol that starts at text[i], advancing i to its last byte; null for
+/// anything else.
+const char* latex_of_symbol(const std::string& text, std::size_t& i) {
+  static const std::pair<const char*, const char*> symbols[] = {
+      {"–", "--"},           {"−", "\\ensuremath{-}"},   {"×", "\\ensuremath{\\times}"},
+      {"≤", "\\ensuremath{\\le}"}, {"≥", "\\ensuremath{\\ge}"},  {"≈", "\\ensuremath{\\approx}"},
+      {"∝", "\\ensuremath{\\propto}"}, {"λ", "\\ensuremath{\\lambda}"},
+      {"μ", "\\ensuremath{\\mu}"},   {"µ", "\\ensuremath{\\mu}"},   {"Σ", "\\ensuremath{\\Sigma}"},
+      {"½", "\\ensuremath{\\tfrac{1}{2}}"}, {"‖", "\\ensuremath{\\|}"}, {"·", "\\ensuremath{\\cdot}"},
+      {"ⁿ", "\\ensuremath{^{n}}"}, {"²", "\\ensuremath{^{2}}"}, {"³", "\\ensuremath{^{3}}"},
+      {"§", "\\S{}"},          {"…", "\\dots{}"},          {"→", "\\ensuremath{\\to}"},
+      {"°", "\\ensuremath{^\\circ}"}};
+  for (const auto& [utf8, latex] : symbols) {
+    const std::size_t length = std::char_traits<char>::length(utf8);
+    if (text.compare(i, length, utf8) == 0) {
+      i += length - 1;
+      return latex;
+    }
+  }
+  return nullptr;
+}
+
+}  // namespace
 
 std::string latex_escape(const std::string& text) {
   std::string out;
@@ -65,16 +93,9 @@ std::string latex_escape(const std::string& text) {
         out += "\\textbackslash{}";
         break;
       default:
-        // A few UTF-8 symbols the captions use, as LaTeX.
-        if (text.compare(i, 3, "–") == 0) {
-          out += "--";
-          i += 2;
-        } else if (text.compare(i, 2, "×") == 0) {
-          out += "$\\times$";
-          i += 1;
-        } else if (text.compare(i, 2, "≤") == 0 || text.compare(i, 3, "≤") == 0) {
-          out += "$\\le$";
-          i += text.compare(i, 3, "≤") == 0 ? 2 : 1;
+        // The UTF-8 symbols of the report's texts, as LaTeX.
+        if (const char* latex = latex_of_symbol(text, i)) {
+          out += latex;
         } else {
           out += c;
         }
