@@ -139,7 +139,10 @@ class IterativeSolver {
   /// between the linearised problems (the seed's rule follows them at every iteration).
   bool lagged_normals_;
   long geometric_updates_ = 0;
-  static constexpr double kFollowFraction = 0.1;
+  /// Of what the last update left: the residual the linearised problem is solved to before
+  /// normals next follow; a tenth, down to a hundredth after updates that made no progress.
+  double follow_fraction_ = 0.1;
+  static constexpr double kSmallestFollowFraction = 0.01;
   double follow_below_ = INFINITY;   ///< the residual at which normals next follow the fibres
   double follow_floor_ = 1.0;        ///< of t_d: the smallest residual an update waits for
   double best_followed_ = INFINITY;  ///< the smallest residual an update left
@@ -376,14 +379,15 @@ bool IterativeSolver::must_measure_again() {
 // about the normals (and crossings) of the configuration the one before left: the projected
 // iteration on the deformed gaps themselves cycles on compacted tows, where fibres slide round
 // each other. Normals and crossings follow the displaced centres once the linearised problem's
-// residual has fallen below a tenth of what the last update left, or below t_d (less, down to a
-// hundredth, after updates from there that left more); the contact criterion is judged right
-// after an update, on the normals the state's own forces give. True when they followed (the
-// residuals are then those after the update).
+// residual has fallen below a tenth of what the last update left (down to a hundredth, after
+// updates that made no progress), or below t_d (less, down to a hundredth, after updates from
+// there that left more); the contact criterion is judged right after an update, on the normals
+// the state's own forces give. True when they followed (the residuals are then those after the
+// update).
 bool IterativeSolver::follows_the_fibres_now(double residual) {
   if (!lagged_normals_) return false;
   const double t = overlap_tolerance_;
-  if (!std::isfinite(follow_below_)) follow_below_ = std::max(kFollowFraction * residual, t);
+  if (!std::isfinite(follow_below_)) follow_below_ = std::max(follow_fraction_ * residual, t);
   if (!(residual <= follow_below_)) return false;
   evaluate(true);
   ++geometric_updates_;
@@ -399,7 +403,12 @@ bool IterativeSolver::follows_the_fibres_now(double residual) {
   // Progress of the sequence is judged by what each update leaves: a new best starts the
   // divergence monitor's watch afresh.
   if (after < best_followed_) best_followed_ = after, divergence_.reset();
-  follow_below_ = std::max(kFollowFraction * after, follow_floor_ * t);
+  // One that made none asks the next linearised problem for a finer answer: normals taken from a
+  // rough one turn by its error, and on compacted tows those turns keep groups of fibres sliding
+  // round each other without end.
+  else
+    follow_fraction_ = std::max(follow_fraction_ / 3.0, kSmallestFollowFraction);
+  follow_below_ = std::max(follow_fraction_ * after, follow_floor_ * t);
   return true;
 }
 
