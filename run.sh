@@ -14,7 +14,8 @@ esac
 # Debian packages the project builds and runs with.
 packages=(build-essential cmake libeigen3-dev nlohmann-json3-dev libcli11-dev libgtest-dev
           libbenchmark-dev gnuplot-nox libdeal.ii-dev gmsh libgmsh-dev openmpi-bin
-          libsiconos-numerics-dev)
+          libsiconos-numerics-dev texlive-latex-base texlive-latex-recommended
+          texlive-latex-extra texlive-luatex lmodern poppler-utils)
 
 missing=()
 for p in "${packages[@]}"; do
@@ -94,6 +95,11 @@ step "scale study: generated tows of 100 to 3000 fibres; the reference up to 100
   --reference-fibres 100,300,1000 --peer-fibres 100 --out "$out/study/scale" -q
 step "report"
 ./build/fibrecheck report "$out/compare" "$out/study" --out "$out/report"
+# Twice: the second run sets the citations and references the first wrote down.
+for _ in 1 2; do
+  (cd "$out/report" && pdflatex -interaction=nonstopmode -halt-on-error report.tex >/dev/null) ||
+    { echo "pdflatex stopped on $out/report/report.tex: see $out/report/report.log"; exit 1; }
+done
 echo
-echo "The report: $out/report/report.md (LaTeX: $out/report/report.tex). Results of the scenes: build/results/."
+echo "The report: $out/report/report.pdf (Markdown: report.md, LaTeX: report.tex). Results of the scenes: build/results/."
 exit 0

@@ -258,7 +258,7 @@ void write_compaction_section(ReportPage& page, const std::vector<StoredCompacti
       "the tow's centre, walls included), each step starting from the last. The pressure is the "
       "mean over the walls of the wall force over the wall's area; Vf the fibres' cross-sections "
       "over the area between the walls. Curves are fitted on the steps where the walls carry "
-      "force by van Wyk's p = kE(Vf^3 - Vf0^3) and Toll's p = kE(Vf^n - Vf0^n). Friction: "
+      "force by van Wyk's $p = kE(V_f^3 - V_{f0}^3)$ [@vanwyk1946] and Toll's $p = kE(V_f^n - V_{f0}^n)$ [@toll1998]. Friction: "
       "Coulomb's law per step (stick while |F| < muN, slip against the relative motion "
       "otherwise), which both solvers solve as a Tresca fixed point (the radii muN updated "
       "outside a convex inner problem, relaxed; the reference solves each inner problem exactly, "

@@ -38,6 +38,9 @@ bool Gnuplot::plot(const std::string& name, const std::string& body,
      << script << "\n"
      << "set terminal svg size 960,640 font 'Sans,14' enhanced\n"
      << "set output '" << name << ".svg'\n"
+     << "replot\n"
+     << "set terminal pdfcairo size 5in,3.33in font 'Sans,9' enhanced\n"
+     << "set output '" << name << ".pdf'\n"
      << "replot\n";
   write_file_atomically((src / (name + ".gp")).string(), gp.str());
   if (!available_) {

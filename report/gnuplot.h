@@ -6,9 +6,9 @@
 
 namespace fibrecheck {
 
-/// Draws the report's figures with gnuplot, each as `<folder>/<name>.png` and `.svg`, from a script
-/// and data files kept in `<folder>/src/` (so that a reader can restyle a figure and draw it again
-/// with `gnuplot src/<name>.gp` in the figures folder).
+/// Draws the report's figures with gnuplot, each as `<folder>/<name>.png`, `.svg` and `.pdf` (the
+/// one pdflatex takes), from a script and data files kept in `<folder>/src/` (so that a reader can
+/// restyle a figure and draw it again with `gnuplot src/<name>.gp` in the figures folder).
 class Gnuplot {
  public:
   explicit Gnuplot(std::string folder);

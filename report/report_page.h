@@ -12,7 +12,8 @@
 namespace fibrecheck {
 
 /// The report being assembled in its folder: the Markdown and LaTeX bodies, the numbered tables
-/// (tables/*.tex) and figures (figures/*.png|svg, drawn by gnuplot), and the numbers (data/*.csv).
+/// (tables/*.tex) and figures (figures/*.png|svg|pdf, drawn by gnuplot), and the numbers
+/// (data/*.csv).
 /// A section of the report writes through it; `finish` puts the title, the preamble and the list
 /// of what was read around the bodies.
 class ReportPage {

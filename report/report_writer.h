@@ -17,8 +17,8 @@ struct ReportSummary {
 
 /// Writes the report of `data` into `folder` (DESIGN §6): report.md with numbered tables and
 /// figures in the manner of a thesis results chapter, report.tex with tables/*.tex (booktabs) and
-/// figures/*.png|svg (gnuplot), and data/*.csv. It formats what the harness measured and computes
-/// no physics. Without gnuplot the tables still come out and `missing` says why the figures did
+/// figures/*.png|svg|pdf (gnuplot), and data/*.csv. It formats what the harness measured and
+/// computes no physics. Without gnuplot the tables still come out and `missing` says why the figures did
 /// not.
 ReportSummary write_report(const ReportData& data, const std::string& folder);
 

@@ -90,9 +90,9 @@ void step_figure(ReportPage& page, const StabilityStudyScene& s) {
 void write_stability_section(ReportPage& page, const std::vector<StabilityStudyScene>& studies) {
   if (studies.empty()) return;
   page.section("Stability of the force update",
-               "The seed's update P' = P + c·d (§4.3.2) is a projected Richardson iteration on "
+               "The seed's update $P' = P + c\\,d$ (§4.3.2) is a projected Richardson iteration on "
                "the contact compliance W; its step is c·D (c/n per slice, Eq. 4.28), stable for c "
-               "below c_crit = 2/λmax(D½WD½), which every run estimates.");
+               "below $c_\\mathrm{crit} = 2/\\lambda_{\\max}(D^{1/2}WD^{1/2})$, which every run estimates.");
   StabilityTables t = stability_tables();
   std::vector<std::vector<std::string>> rows;
   for (const StabilityStudyScene& s : studies) {

@@ -1,6 +1,8 @@
 #include "tables.h"
 
+#include <cctype>
 #include <cmath>
+#include <cstdlib>
 #include <cstdio>
 #include <sstream>
 #include <string>
@@ -55,11 +57,55 @@ const char* latex_of_symbol(const std::string& text, std::size_t& i) {
   return nullptr;
 }
 
+bool is_word_character(char c) {
+  return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '.';
+}
+
+/// The length of the number in scientific notation ("4.85e-08", "-1e+03") that starts at
+/// text[i] and stands as a word of its own, or 0; its mantissa's length in `mantissa`.
+std::size_t scientific_number_at(const std::string& text, std::size_t i, std::size_t& mantissa) {
+  if (i > 0 && (is_word_character(text[i - 1]) || text[i - 1] == '-')) return 0;
+  std::size_t j = i;
+  if (j < text.size() && (text[j] == '-' || text[j] == '+')) ++j;
+  const std::size_t digits = j;
+  while (j < text.size() && std::isdigit(static_cast<unsigned char>(text[j]))) ++j;
+  if (j == digits) return 0;
+  if (j < text.size() && text[j] == '.') {
+    ++j;
+    while (j < text.size() && std::isdigit(static_cast<unsigned char>(text[j]))) ++j;
+  }
+  mantissa = j - i;
+  if (j >= text.size() || text[j] != 'e') return 0;
+  ++j;
+  if (j < text.size() && (text[j] == '-' || text[j] == '+')) ++j;
+  const std::size_t exponent = j;
+  while (j < text.size() && std::isdigit(static_cast<unsigned char>(text[j]))) ++j;
+  if (j == exponent) return 0;
+  if (j < text.size() && (std::isalpha(static_cast<unsigned char>(text[j])) || text[j] == '_'))
+    return 0;
+  return j - i;
+}
+
+/// "4.85e-08" as $4.85\times10^{-8}$ (a zero as 0).
+std::string typeset_scientific(const std::string& number, std::size_t mantissa) {
+  const std::string m = number.substr(0, mantissa);
+  const int exponent = std::stoi(number.substr(mantissa + 1));
+  if (std::stod(m) == 0.0) return "0";
+  if (exponent == 0) return m;
+  return "\\ensuremath{" + m + "\\times10^{" + std::to_string(exponent) + "}}";
+}
+
 }  // namespace
 
 std::string latex_escape(const std::string& text) {
   std::string out;
   for (std::size_t i = 0; i < text.size(); ++i) {
+    std::size_t mantissa = 0;
+    if (const std::size_t length = scientific_number_at(text, i, mantissa)) {
+      out += typeset_scientific(text.substr(i, length), mantissa);
+      i += length - 1;
+      continue;
+    }
     const char c = text[i];
     switch (c) {
       case '_':
@@ -104,12 +150,56 @@ std::string latex_escape(const std::string& text) {
   return out;
 }
 
+bool is_numeric_cell(const std::string& cell) {
+  if (cell.empty() || cell == "–" || cell == "-") return true;
+  char* end = nullptr;
+  std::strtod(cell.c_str(), &end);
+  if (end == cell.c_str()) return false;
+  const std::string rest(end);
+  return rest.empty() || rest == "%" || rest == "×";
+}
+
+namespace {
+
+bool is_numeric_column(const Table& t, std::size_t column) {
+  for (const auto& row : t.rows)
+    if (column < row.size() && !is_numeric_cell(row[column])) return false;
+  return true;
+}
+
+}  // namespace
+
+/// A text of the report as LaTeX: "$…$" is mathematics and goes through as it is, "[@key]" cites,
+/// the rest is escaped.
+std::string latex_text(const std::string& text) {
+  std::string out;
+  std::size_t at = 0;
+  while (at < text.size()) {
+    const std::size_t math = text.find('$', at), cite = text.find("[@", at);
+    const std::size_t next = std::min(math, cite);
+    out += latex_escape(text.substr(at, next - at));
+    if (next == std::string::npos) break;
+    const std::size_t end = next == math ? text.find('$', math + 1) : text.find(']', cite);
+    if (end == std::string::npos) {
+      out += latex_escape(text.substr(next));
+      break;
+    }
+    if (next == math)
+      out += text.substr(math, end + 1 - math);
+    else
+      out += "\\cite{" + text.substr(cite + 2, end - cite - 2) + "}";
+    at = end + 1;
+  }
+  return out;
+}
+
 std::string markdown(const Table& t, int number) {
   std::ostringstream out;
   out << "**Table " << number << ".** " << t.caption << "\n\n|";
   for (const std::string& h : t.header) out << " " << h << " |";
   out << "\n|";
-  for (std::size_t i = 0; i < t.header.size(); ++i) out << (i == 0 ? " --- |" : " ---: |");
+  for (std::size_t i = 0; i < t.header.size(); ++i)
+    out << (is_numeric_column(t, i) ? " ---: |" : " --- |");
   out << "\n";
   for (const auto& row : t.rows) {
     out << "|";
@@ -121,9 +211,10 @@ std::string markdown(const Table& t, int number) {
 
 std::string latex(const Table& t) {
   std::ostringstream out;
-  out << "\\begin{table}[htbp]\n  \\centering\n  \\caption{" << latex_escape(t.caption)
-      << "}\n  \\label{tab:" << t.label << "}\n  \\begin{tabular}{l";
-  for (std::size_t i = 1; i < t.header.size(); ++i) out << "r";
+  out << "\\begin{table}[htbp]\n  \\centering\n  \\caption{" << latex_text(t.caption)
+      << "}\n  \\label{tab:" << t.label
+      << "}\n  \\begin{adjustbox}{max width=\\linewidth}\n  \\begin{tabular}{";
+  for (std::size_t i = 0; i < t.header.size(); ++i) out << (is_numeric_column(t, i) ? "r" : "l");
   out << "}\n    \\toprule\n    ";
   for (std::size_t i = 0; i < t.header.size(); ++i)
     out << (i ? " & " : "") << latex_escape(t.header[i]);
@@ -133,7 +224,7 @@ std::string latex(const Table& t) {
     for (std::size_t i = 0; i < row.size(); ++i) out << (i ? " & " : "") << latex_escape(row[i]);
     out << " \\\\\n";
   }
-  out << "    \\bottomrule\n  \\end{tabular}\n\\end{table}\n";
+  out << "    \\bottomrule\n  \\end{tabular}\n  \\end{adjustbox}\n\\end{table}\n";
   return out.str();
 }
 

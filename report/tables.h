@@ -18,7 +18,8 @@ struct Table {
 std::string markdown(const Table& table, int number);
 
 /// The table as a LaTeX table environment with booktabs rules, to be \input; special characters of
-/// the cells and caption escaped.
+/// the cells and caption escaped, text columns flush left and numeric ones right, the whole
+/// scaled down to the line width where it is wider.
 std::string latex(const Table& table);
 
 /// A number for a table: three significant digits in scientific notation ("1.23e-04"), "–" for
@@ -29,7 +30,15 @@ std::string seconds(double value);
 /// A number with three decimals ("0.452"), "–" for NaN.
 std::string fixed3(double value);
 
-/// Text with LaTeX's special characters escaped.
+/// Text with LaTeX's special characters escaped, its UTF-8 symbols as LaTeX and its numbers in
+/// scientific notation typeset (4.85e-08 as 4.85 × 10⁻⁸).
 std::string latex_escape(const std::string& text);
+
+/// A text of the report as LaTeX: "$…$" is mathematics and goes through as it is, "[@key]" cites
+/// (\cite{key}), the rest is latex_escape'd.
+std::string latex_text(const std::string& text);
+
+/// Whether a table cell is a number (or "–" for none): such columns are set flush right.
+bool is_numeric_cell(const std::string& cell);
 
 }  // namespace fibrecheck
