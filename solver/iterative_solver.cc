@@ -146,6 +146,8 @@ class IterativeSolver {
   double follow_below_ = INFINITY;   ///< the residual at which normals next follow the fibres
   double follow_floor_ = 1.0;        ///< of t_d: the smallest residual an update waits for
   double best_followed_ = INFINITY;  ///< the smallest residual an update left
+  int updates_without_progress_ = 0;  ///< since an update last left a new smallest residual
+  static constexpr int kPatientUpdates = 30;
   static constexpr int kMaxCrossingMoves = 5;
   int crossing_moves_ = 0;          ///< updates from within t_d that moved a crossing
   bool crossings_moved_ = false;    ///< at the last evaluation
@@ -400,19 +402,31 @@ bool IterativeSolver::follows_the_fibres_now(double residual) {
   // An update from within t_d that leaves more than t_d: the next one waits for a smaller
   // residual, so that the normals' own change, not the linearised problem's, decides.
   if (residual < t && !(after < t)) follow_floor_ = std::max(0.5 * follow_floor_, 0.01);
-  // Progress of the sequence is judged by what each update leaves: a new best starts the
-  // divergence monitor's watch afresh.
-  if (after < best_followed_) best_followed_ = after, divergence_.reset();
-  // One that made none asks the next linearised problem for a finer answer: normals taken from a
-  // rough one turn by its error, and on compacted tows those turns keep groups of fibres sliding
-  // round each other without end.
-  else
+  // Progress of the sequence is judged by what each update leaves, kPatientUpdates of them at
+  // most without a new best; the divergence monitor watches each linearised problem on its own.
+  divergence_.reset();
+  if (after < best_followed_) {
+    best_followed_ = after;
+    updates_without_progress_ = 0;
+  } else {
+    ++updates_without_progress_;
+    // One that made none asks the next linearised problem for a finer answer: normals taken
+    // from a rough one turn by its error, and on compacted tows those turns keep groups of
+    // fibres sliding round each other without end.
     follow_fraction_ = std::max(follow_fraction_ / 3.0, kSmallestFollowFraction);
+  }
   follow_below_ = std::max(follow_fraction_ * after, follow_floor_ * t);
   return true;
 }
 
 std::optional<Termination> IterativeSolver::diverging(long iteration, double residual) {
+  if (updates_without_progress_ >= kPatientUpdates) {
+    std::ostringstream out;
+    out.precision(3);
+    out << "no progress: " << kPatientUpdates << " updates of the normals to the displaced "
+        << "centres left no residual below " << best_followed_ << " mm";
+    return Termination{Status::diverged, Criterion::oscillation, out.str()};
+  }
   const auto verdict = divergence_.observe(iteration, residual);
   if (verdict == DivergenceMonitor::Verdict::fine) return std::nullopt;
   const bool growth = verdict == DivergenceMonitor::Verdict::growth;
