@@ -2,6 +2,8 @@
 
 #include <Eigen/Geometry>
 #include <cmath>
+#include <optional>
+#include <sstream>
 
 #include "atomic_file.h"
 #include "cross_section_figure.h"
@@ -42,6 +44,27 @@ Table comparison_table(const std::vector<StoredComparison>& comparisons,
                     cell(s.geometry.worst()), cell(user_time), cell(truth_time)});
   }
   return t;
+}
+
+// The worst force error of the runs as the scenes specify them, and which part of the split
+// makes most of it.
+std::optional<std::string> accuracy_finding(const std::vector<StoredComparison>& comparisons) {
+  const ComparisonRecord* worst = nullptr;
+  int compared = 0;
+  for (const StoredComparison& c : comparisons) {
+    if (!c.summary.comparable || !std::isfinite(c.summary.total.force)) continue;
+    ++compared;
+    if (!worst || c.summary.total.force > worst->total.force) worst = &c.summary;
+  }
+  if (!worst) return std::nullopt;
+  const double iteration = worst->iteration.force, slicing = worst->slicing.force;
+  std::ostringstream out;
+  out << "On " << compared << " scenes run as they are specified, the iterative method's force "
+      << "error against the ground truth is at most " << sci(worst->total.force) << " ("
+      << worst->scene << ", [#tab:comparison]), mostly from its "
+      << (slicing > iteration ? "slices" : "stopping criterion") << " (slicing "
+      << sci(slicing) << ", iteration " << sci(iteration) << ").";
+  return out.str();
 }
 
 /// The user's run's largest overlap and strain energy at each recorded iteration.
@@ -127,6 +150,7 @@ void write_comparison_section(ReportPage& page, const std::vector<StoredComparis
   std::vector<std::vector<std::string>> rows;
   const Table t = comparison_table(comparisons, rows);
   page.table(t);
+  if (auto finding = accuracy_finding(comparisons)) page.finding(*finding);
   page.summary().headline += markdown(t, 1);
   page.csv("comparison",
            {"scene", "rule", "deflection_error", "force_error", "energy_error", "iteration_error",

@@ -70,9 +70,21 @@ void ReportPage::section(const std::string& title, const std::string& text) {
 
 void ReportPage::table(const Table& t) {
   ++summary_.tables;
+  numbers_.emplace_back("tab:" + t.label, "Table " + std::to_string(summary_.tables));
   md_ << "\n" << markdown(t, summary_.tables) << "\n";
   write_file_atomically((folder_ / "tables" / (t.label + ".tex")).string(), latex(t));
   tex_ << "\n\\input{tables/" << t.label << ".tex}\n";
+}
+
+void ReportPage::finding(const std::string& text) { findings_.push_back(text); }
+
+void ReportPage::appendix_table(const std::string& appendix_title, const Table& t) {
+  ++summary_.tables;
+  numbers_.emplace_back("tab:" + t.label, "Table " + std::to_string(summary_.tables));
+  appendix_md_ << "\n## " << appendix_title << "\n\n" << markdown(t, summary_.tables) << "\n";
+  write_file_atomically((folder_ / "tables" / (t.label + ".tex")).string(), latex(t));
+  appendix_tex_ << "\n\\section{" << latex_escape(appendix_title) << "}\n\\input{tables/"
+                << t.label << ".tex}\n";
 }
 
 void ReportPage::figure(const std::string& name, const std::string& caption,
@@ -83,6 +95,7 @@ void ReportPage::figure(const std::string& name, const std::string& caption,
     return;
   }
   ++summary_.figures;
+  numbers_.emplace_back("fig:" + name, "Figure " + std::to_string(summary_.figures));
   md_ << "\n![Figure " << summary_.figures << "](figures/" << name << ".png)\n\n**Figure "
       << summary_.figures << ".** " << markdown_text(caption) << "\n";
   tex_ << "\n\\begin{figure}[htbp]\n  \\centering\n  "
@@ -111,11 +124,27 @@ const char* const kIntroduction =
     "$\\tfrac12\\sum P\\,v$. The ground truth is the implicit finite-element reference with "
     "continuous line contact (on slices where a scene has only point contacts).\n";
 
+std::string ReportPage::with_numbers(std::string markdown) const {
+  for (const auto& [label, number] : numbers_) {
+    const std::string mark = "[#" + label + "]";
+    for (std::size_t at = markdown.find(mark); at != std::string::npos;
+         at = markdown.find(mark, at + number.size()))
+      markdown.replace(at, mark.size(), number);
+  }
+  return markdown;
+}
+
 ReportSummary ReportPage::finish(const std::vector<std::string>& sources) {
   std::ostringstream md;
   md << "# fibrecheck: the iterative fibre-contact method, checked\n\n"
-     << markdown_text(kIntroduction) << md_.str() << "\n## References\n\n";
+     << markdown_text(kIntroduction);
+  if (!findings_.empty()) {
+    md << "\n## Key findings\n\n";
+    for (const std::string& f : findings_) md << "- " << markdown_text(f) << "\n";
+  }
+  md << md_.str() << "\n## References\n\n";
   for (const Reference& r : kReferences) md << "- " << r.plain << "\n";
+  if (!appendix_md_.str().empty()) md << "\n# Appendix\n" << appendix_md_.str();
   md << "\n---\nData read: " << sources.size() << " files; "
      << "tables in `tables/`, figures in `figures/` (their gnuplot scripts in `figures/src/`), "
         "the numbers in `data/`.\n";
@@ -123,7 +152,7 @@ ReportSummary ReportPage::finish(const std::vector<std::string>& sources) {
     md << "\nFigures not drawn:\n";
     for (const std::string& m : summary_.missing) md << "- " << m << "\n";
   }
-  write_file_atomically((folder_ / "report.md").string(), md.str());
+  write_file_atomically((folder_ / "report.md").string(), with_numbers(md.str()));
   std::ostringstream tex;
   tex << "\\documentclass[a4paper,11pt]{article}\n\\usepackage[T1]{fontenc}\n"
          "\\usepackage{lmodern}\n\\usepackage{amsmath}\n\\usepackage{booktabs}\n"
@@ -134,10 +163,17 @@ ReportSummary ReportPage::finish(const std::vector<std::string>& sources) {
          "\\title{fibrecheck: the iterative fibre-contact method, checked}\n\\author{}\n"
          "\\date{}\n"
          "\\begin{document}\n\\maketitle\n"
-      << latex_text(kIntroduction) << tex_.str()
-      << "\n\\begin{thebibliography}{9}\n";
+      << latex_text(kIntroduction) << "\n";
+  if (!findings_.empty()) {
+    tex << "\n\\section*{Key findings}\n\\begin{itemize}\n";
+    for (const std::string& f : findings_) tex << "\\item " << latex_text(f) << "\n";
+    tex << "\\end{itemize}\n";
+  }
+  tex << tex_.str() << "\n\\begin{thebibliography}{9}\n";
   for (const Reference& r : kReferences) tex << "\\bibitem{" << r.key << "} " << r.entry << "\n";
-  tex << "\\end{thebibliography}\n\\end{document}\n";
+  tex << "\\end{thebibliography}\n";
+  if (!appendix_tex_.str().empty()) tex << "\n\\appendix\n" << appendix_tex_.str();
+  tex << "\\end{document}\n";
   write_file_atomically((folder_ / "report.tex").string(), tex.str());
   return summary_;
 }

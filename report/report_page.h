@@ -3,6 +3,7 @@
 #include <filesystem>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "gnuplot.h"
@@ -22,8 +23,12 @@ class ReportPage {
 
   /// A section: its title and the paragraph that opens it.
   void section(const std::string& title, const std::string& text);
-  /// The next numbered table.
+  /// One of the key findings, listed at the top of the report (a sentence, in the texts' markup).
+  void finding(const std::string& text);
+  /// The next numbered table, in the body or in the appendix (long tables a reader looks up
+  /// rather than reads; `appendix_title` names the appendix section it opens there).
   void table(const Table& table);
+  void appendix_table(const std::string& appendix_title, const Table& table);
   /// The next numbered figure, `name`.png and .svg, from a gnuplot script `body` over `series`
   /// (see Gnuplot::plot). A figure gnuplot cannot draw is left out and named in the summary.
   void figure(const std::string& name, const std::string& caption, const std::string& body,
@@ -39,7 +44,11 @@ class ReportPage {
  private:
   std::filesystem::path folder_;
   Gnuplot gnuplot_;
-  std::ostringstream md_, tex_;
+  std::ostringstream md_, tex_, appendix_md_, appendix_tex_;
+  std::vector<std::string> findings_;
+  std::vector<std::pair<std::string, std::string>> numbers_;  ///< "tab:x" → "Table 3"
+  /// The Markdown with every "[#tab:x]" and "[#fig:x]" as the number it has.
+  std::string with_numbers(std::string markdown) const;
   ReportSummary summary_;
 };
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <map>
+#include <optional>
 #include <sstream>
 
 namespace fibrecheck {
@@ -93,6 +94,32 @@ void time_figure(ReportPage& page, const ScaleStudy& study) {
 
 }  // namespace
 
+// The largest tow the iterative solver took, with its time, and the reference's largest.
+std::optional<std::string> scale_finding(const std::vector<ScaleStudy>& studies) {
+  const ScalePoint *iterative = nullptr, *reference = nullptr;
+  auto keep_largest = [](const ScalePoint*& largest, const ScalePoint& p) {
+    if (!largest || p.fibres > largest->fibres ||
+        (p.fibres == largest->fibres && p.time_s < largest->time_s))
+      largest = &p;
+  };
+  for (const ScaleStudy& study : studies)
+    for (const ScalePoint& p : study.points) {
+      if (p.status != "converged") continue;
+      if (p.solver == "iterative") keep_largest(iterative, p);
+      if (p.solver == "fem") keep_largest(reference, p);
+    }
+  if (!iterative) return std::nullopt;
+  std::ostringstream out;
+  out << "The iterative solver took a " << iterative->fibres << "-fibre tow (" << iterative->slices
+      << " slices) in " << seconds(iterative->time_s) << " s";
+  if (reference)
+    out << "; the reference's largest, " << reference->fibres << " fibres, took "
+        << seconds(reference->time_s) << " s on " << reference->processes << " process"
+        << (reference->processes > 1 ? "es" : "");
+  out << " ([#tab:scale]).";
+  return out.str();
+}
+
 void write_scale_section(ReportPage& page, const std::vector<ScaleStudy>& studies) {
   if (studies.empty()) return;
   page.section(
@@ -110,6 +137,7 @@ void write_scale_section(ReportPage& page, const std::vector<ScaleStudy>& studie
     page.table(t);
     time_figure(page, study);
   }
+  if (auto finding = scale_finding(studies)) page.finding(*finding);
 }
 
 }  // namespace fibrecheck

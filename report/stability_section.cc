@@ -1,6 +1,8 @@
 #include "stability_section.h"
 
 #include <algorithm>
+#include <cmath>
+#include <optional>
 #include <sstream>
 
 #include "atomic_file.h"
@@ -85,6 +87,28 @@ void step_figure(ReportPage& page, const StabilityStudyScene& s) {
               {{or_nan(converged)}, {or_nan(diverged)}, {or_nan(other)}});
 }
 
+// Where rule seed stops converging: the largest c/c_crit at which every run converged and the
+// smallest at which one did not, over the scenes studied.
+std::optional<std::string> stability_finding(const std::vector<StabilityStudyScene>& studies) {
+  double stable = 0.0, unstable = INFINITY;
+  for (const StabilityStudyScene& s : studies)
+    for (const StepPoint& p : s.steps)
+      if (p.status == "converged")
+        stable = std::max(stable, p.fraction);
+      else
+        unstable = std::min(unstable, p.fraction);
+  if (!(stable > 0.0)) return std::nullopt;
+  std::ostringstream out;
+  out << "The seed's force update converged up to $c = " << seconds(stable)
+      << "\\,c_\\mathrm{crit}$ on every scene studied";
+  if (std::isfinite(unstable))
+    out << " and failed from $c = " << seconds(unstable)
+        << "\\,c_\\mathrm{crit}$ ([#tab:stability])";
+  out << ": the limit $c_\\mathrm{crit} = 2/\\lambda_{\\max}$ each run estimates is the one to "
+         "keep to.";
+  return out.str();
+}
+
 }  // namespace
 
 void write_stability_section(ReportPage& page, const std::vector<StabilityStudyScene>& studies) {
@@ -110,8 +134,9 @@ void write_stability_section(ReportPage& page, const std::vector<StabilityStudyS
     step_figure(page, s);
   }
   if (!t.steps.rows.empty()) page.table(t.steps);
+  if (auto finding = stability_finding(studies)) page.finding(*finding);
   if (!t.stiffness.rows.empty()) page.table(t.stiffness);
-  if (!t.catalogue.rows.empty()) page.table(t.catalogue);
+  if (!t.catalogue.rows.empty()) page.appendix_table("The extreme catalogue", t.catalogue);
   page.csv("stability", {"scene", "c_over_c_crit", "c", "iterations", "status", "criterion"}, rows);
 }
 

@@ -1,5 +1,6 @@
 #include "tables.h"
 
+#include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <cstdlib>
@@ -169,25 +170,27 @@ bool is_numeric_column(const Table& t, std::size_t column) {
 
 }  // namespace
 
-/// A text of the report as LaTeX: "$…$" is mathematics and goes through as it is, "[@key]" cites,
-/// the rest is escaped.
 std::string latex_text(const std::string& text) {
   std::string out;
   std::size_t at = 0;
   while (at < text.size()) {
-    const std::size_t math = text.find('$', at), cite = text.find("[@", at);
-    const std::size_t next = std::min(math, cite);
+    const std::size_t math = text.find('$', at), cite = text.find("[@", at),
+                      ref = text.find("[#", at);
+    const std::size_t next = std::min({math, cite, ref});
     out += latex_escape(text.substr(at, next - at));
     if (next == std::string::npos) break;
-    const std::size_t end = next == math ? text.find('$', math + 1) : text.find(']', cite);
+    const std::size_t end = next == math ? text.find('$', math + 1) : text.find(']', next);
     if (end == std::string::npos) {
       out += latex_escape(text.substr(next));
       break;
     }
+    const std::string inside = text.substr(next + 2, end - next - 2);
     if (next == math)
       out += text.substr(math, end + 1 - math);
+    else if (next == cite)
+      out += "\\cite{" + inside + "}";
     else
-      out += "\\cite{" + text.substr(cite + 2, end - cite - 2) + "}";
+      out += (inside.rfind("fig:", 0) == 0 ? "Figure~\\ref{" : "Table~\\ref{") + inside + "}";
     at = end + 1;
   }
   return out;

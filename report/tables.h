@@ -35,7 +35,8 @@ std::string fixed3(double value);
 std::string latex_escape(const std::string& text);
 
 /// A text of the report as LaTeX: "$…$" is mathematics and goes through as it is, "[@key]" cites
-/// (\cite{key}), the rest is latex_escape'd.
+/// (\cite{key}), "[#tab:label]" and "[#fig:label]" refer to a table or figure (Table~\ref{…}),
+/// the rest is latex_escape'd.
 std::string latex_text(const std::string& text);
 
 /// Whether a table cell is a number (or "–" for none): such columns are set flush right.
