@@ -59,7 +59,8 @@ std::optional<std::string> accuracy_finding(const std::vector<StoredComparison>&
   if (!worst) return std::nullopt;
   const double iteration = worst->iteration.force, slicing = worst->slicing.force;
   std::ostringstream out;
-  out << "On " << compared << " scenes run as they are specified, the iterative method's force "
+  out << "On " << compared << (compared == 1 ? " scene" : " scenes")
+      << " run as specified, the iterative method's force "
       << "error against the ground truth is at most " << sci(worst->total.force) << " ("
       << worst->scene << ", [#tab:comparison]), mostly from its "
       << (slicing > iteration ? "slices" : "stopping criterion") << " (slicing "

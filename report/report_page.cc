@@ -79,12 +79,8 @@ void ReportPage::table(const Table& t) {
 void ReportPage::finding(const std::string& text) { findings_.push_back(text); }
 
 void ReportPage::appendix_table(const std::string& appendix_title, const Table& t) {
-  ++summary_.tables;
-  numbers_.emplace_back("tab:" + t.label, "Table " + std::to_string(summary_.tables));
-  appendix_md_ << "\n## " << appendix_title << "\n\n" << markdown(t, summary_.tables) << "\n";
   write_file_atomically((folder_ / "tables" / (t.label + ".tex")).string(), latex(t));
-  appendix_tex_ << "\n\\section{" << latex_escape(appendix_title) << "}\n\\input{tables/"
-                << t.label << ".tex}\n";
+  appendix_.emplace_back(appendix_title, t);
 }
 
 void ReportPage::figure(const std::string& name, const std::string& caption,
@@ -135,6 +131,14 @@ std::string ReportPage::with_numbers(std::string markdown) const {
 }
 
 ReportSummary ReportPage::finish(const std::vector<std::string>& sources) {
+  std::ostringstream appendix_md, appendix_tex;
+  for (const auto& [title, t] : appendix_) {
+    ++summary_.tables;
+    numbers_.emplace_back("tab:" + t.label, "Table " + std::to_string(summary_.tables));
+    appendix_md << "\n## " << title << "\n\n" << markdown(t, summary_.tables) << "\n";
+    appendix_tex << "\n\\section{" << latex_escape(title) << "}\n\\input{tables/" << t.label
+                 << ".tex}\n";
+  }
   std::ostringstream md;
   md << "# fibrecheck: the iterative fibre-contact method, checked\n\n"
      << markdown_text(kIntroduction);
@@ -144,7 +148,7 @@ ReportSummary ReportPage::finish(const std::vector<std::string>& sources) {
   }
   md << md_.str() << "\n## References\n\n";
   for (const Reference& r : kReferences) md << "- " << r.plain << "\n";
-  if (!appendix_md_.str().empty()) md << "\n# Appendix\n" << appendix_md_.str();
+  if (!appendix_.empty()) md << "\n# Appendix\n" << appendix_md.str();
   md << "\n---\nData read: " << sources.size() << " files; "
      << "tables in `tables/`, figures in `figures/` (their gnuplot scripts in `figures/src/`), "
         "the numbers in `data/`.\n";
@@ -172,7 +176,7 @@ ReportSummary ReportPage::finish(const std::vector<std::string>& sources) {
   tex << tex_.str() << "\n\\begin{thebibliography}{9}\n";
   for (const Reference& r : kReferences) tex << "\\bibitem{" << r.key << "} " << r.entry << "\n";
   tex << "\\end{thebibliography}\n";
-  if (!appendix_tex_.str().empty()) tex << "\n\\appendix\n" << appendix_tex_.str();
+  if (!appendix_.empty()) tex << "\n\\appendix\n" << appendix_tex.str();
   tex << "\\end{document}\n";
   write_file_atomically((folder_ / "report.tex").string(), tex.str());
   return summary_;

@@ -44,7 +44,9 @@ class ReportPage {
  private:
   std::filesystem::path folder_;
   Gnuplot gnuplot_;
-  std::ostringstream md_, tex_, appendix_md_, appendix_tex_;
+  std::ostringstream md_, tex_;
+  /// Numbered after the body's tables, as LaTeX numbers them where they stand.
+  std::vector<std::pair<std::string, Table>> appendix_;
   std::vector<std::string> findings_;
   std::vector<std::pair<std::string, std::string>> numbers_;  ///< "tab:x" → "Table 3"
   /// The Markdown with every "[#tab:x]" and "[#fig:x]" as the number it has.
