@@ -14,7 +14,7 @@ namespace fibrecheck {
 
 namespace {
 
-/// "iterative, mu 0.2 (Coulomb)", "reference, frictionless", …
+/// "iterative, μ = 0.2 (Coulomb)", "reference, frictionless", …
 std::string run_title(const CompactionRun& r) {
   const std::string solver = r.solver == "fem" ? "reference" : "iterative";
   std::ostringstream out;
@@ -22,7 +22,7 @@ std::string run_title(const CompactionRun& r) {
   if (r.friction_model == "none")
     out << "frictionless";
   else
-    out << "mu " << r.mu << (r.friction_model == "seed" ? " (seed rule)" : " (Coulomb)");
+    out << "μ = " << r.mu << (r.friction_model == "seed" ? " (seed rule)" : " (Coulomb)");
   if (r.geometry == "linearised") out << ", linearised contact";
   return out.str();
 }
@@ -237,7 +237,7 @@ Table agreement_table() {
       "largest per-step difference in pressure, relative to the reference curve's largest "
       "pressure, and in strain energy, relative to its largest, over the steps both converged. "
       "The seed's friction rule is measured against exact Coulomb friction.";
-  agreement.header = {"Scene",   "mu",    "Iterative friction", "Reference friction",
+  agreement.header = {"Scene",   "μ",    "Iterative friction", "Reference friction",
                       "Contact", "Steps", "Pressure error",     "Energy error"};
   return agreement;
 }

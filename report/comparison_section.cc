@@ -68,6 +68,8 @@ std::optional<std::string> accuracy_finding(const std::vector<StoredComparison>&
   return out.str();
 }
 
+constexpr std::size_t kShortestHistory = 10;
+
 /// The user's run's largest overlap and strain energy at each recorded iteration.
 void history_figure(ReportPage& page, const StoredComparison& c) {
   const std::string& scene = c.summary.scene;
@@ -76,7 +78,8 @@ void history_figure(ReportPage& page, const StoredComparison& c) {
     if (h.max_overlap > 0.0) overlap << h.iteration << " " << h.max_overlap << "\n";
     if (std::isfinite(h.strain_energy)) energy << h.iteration << " " << h.strain_energy << "\n";
   }
-  if (c.user.history.size() < 2 || overlap.str().empty()) return;
+  // A run of a few iterations has no history worth a figure.
+  if (c.user.history.size() < kShortestHistory || overlap.str().empty()) return;
   page.figure(
       "history_" + file_name_slug(scene),
       "Convergence of the iterative method on " + scene + " (rule " + c.user.rule +
@@ -135,6 +138,35 @@ void deflection_figure(ReportPage& page, const StoredComparison& c) {
       {{deflection_rows(truth, direction)}, {deflection_rows(c.user.fibres[*fibre], direction)}});
 }
 
+// The error split as bars per scene (log scale): what stopping, slicing and the small-deflection
+// contact each contribute, so that a reader sees at once which to spend effort on.
+void error_split_figure(ReportPage& page, const std::vector<StoredComparison>& comparisons) {
+  std::ostringstream rows;
+  int scenes = 0;
+  // A part below 1e-16 (or missing) is drawn at the axis's floor: exact to round-off.
+  auto bar = [](double e) { return std::isfinite(e) && e > 1e-16 ? e : 1e-16; };
+  for (const StoredComparison& c : comparisons) {
+    const ComparisonRecord& s = c.summary;
+    if (!s.comparable) continue;
+    rows << '"' << s.scene << "\" " << bar(s.iteration.worst()) << " "
+         << bar(s.slicing.worst()) << " " << bar(s.geometry.worst()) << "\n";
+    ++scenes;
+  }
+  if (scenes < 2) return;
+  page.figure(
+      "error_split",
+      "The error of each scene's run split into its causes (the worst of deflection, force and "
+      "energy): the stopping criterion (iteration), the slices (slicing) and the linearised "
+      "against the deformed contact (geometry, on the same slices); bars at the floor are exact "
+      "to round-off or not measured ([#tab:comparison]).",
+      "set style data histograms\nset style histogram clustered gap 1\nset style fill solid "
+      "0.8 border -1\nset logscale y\nset yrange [1e-16:*]\nset format y '10^{%L}'\nset "
+      "ylabel 'relative error'\nset xtics rotate by -30 noenhanced\nset key top left\nset grid "
+      "y\nplot @DATA0@ using 2:xtic(1) title 'iteration' lc rgb '#3060c0', '' using 3 title "
+      "'slicing' lc rgb '#e0a000', '' using 4 title 'geometry' lc rgb '#a02080'",
+      {{rows.str()}});
+}
+
 }  // namespace
 
 void write_comparison_section(ReportPage& page, const std::vector<StoredComparison>& comparisons) {
@@ -152,6 +184,7 @@ void write_comparison_section(ReportPage& page, const std::vector<StoredComparis
   const Table t = comparison_table(comparisons, rows);
   page.table(t);
   if (auto finding = accuracy_finding(comparisons)) page.finding(*finding);
+  error_split_figure(page, comparisons);
   page.summary().headline += markdown(t, 1);
   page.csv("comparison",
            {"scene", "rule", "deflection_error", "force_error", "energy_error", "iteration_error",

@@ -129,6 +129,8 @@ void draw_cross_section(ReportPage& page, const std::string& name, const std::st
   const SectionCircles circles = section_circles(scene, result, axes);
   if (circles.drawn < 3) return;
   const SectionForces forces = section_forces(result, axes, circles.radius);
+  // A section no contact force crosses shows circles only: not a figure worth a number.
+  if (!(forces.largest_force > 0.0)) return;
   const std::string walls = section_walls(scene, axes, 10.0 * (circles.hi - circles.lo).norm());
   const Eigen::Vector2d pad = Eigen::Vector2d::Constant(0.3 * circles.largest_radius);
   const Eigen::Vector2d lo = circles.lo - pad, hi = circles.hi + pad;
@@ -143,8 +145,11 @@ void draw_cross_section(ReportPage& page, const std::string& name, const std::st
           "the contact forces of that slice as lines from each contact point: normal parts in "
           "orange (the largest, " +
           sci(forces.largest_force) +
-          " N, one radius long), friction forces in red on their own scale (the largest, " +
-          sci(forces.largest_friction) + " N, one radius long).",
+          " N, one radius long)" +
+          (forces.largest_friction > 0.0
+               ? ", friction forces in red on their own scale (the largest, " +
+                     sci(forces.largest_friction) + " N, one radius long)."
+               : std::string(".")),
       "set size ratio -1\n" + ranges +
           "set xlabel 'cross-section axis 1 (mm)'\nset ylabel 'cross-section axis 2 (mm)'\nset "
           "cblabel '|M| (N mm)'\nset cbrange [0:*]\nset rmargin 14\nset palette defined (0 "

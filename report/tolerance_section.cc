@@ -89,6 +89,42 @@ Table speedup_table() {
   return t;
 }
 
+// How each method's runs ended, per scene: a method that fails at some tolerances is a finding
+// the error-against-time figure cannot show (a failed run has no error to plot).
+Table outcome_table(const std::vector<ToleranceStudyScene>& studies) {
+  Table t;
+  t.label = "outcomes";
+  t.caption =
+      "How the runs of the tolerance study ended, per scene and method: runs at each tolerance "
+      "(refinement for the reference) by status; the tolerances of the runs that did not "
+      "converge.";
+  t.header = {"Scene", "Method", "Runs", "Converged", "Diverged", "Other", "Not converged at"};
+  for (const ToleranceStudyScene& s : studies) {
+    std::vector<std::string> methods;
+    for (const TolerancePoint& p : s.points)
+      if (std::find(methods.begin(), methods.end(), p.method) == methods.end())
+        methods.push_back(p.method);
+    for (const std::string& method : methods) {
+      int runs = 0, converged = 0, diverged = 0;
+      std::ostringstream failed;
+      for (const TolerancePoint& p : s.points) {
+        if (p.method != method) continue;
+        ++runs;
+        if (p.status == "converged") {
+          ++converged;
+          continue;
+        }
+        if (p.status == "diverged") ++diverged;
+        failed << (failed.tellp() > 0 ? ", " : "") << sci(p.parameter);
+      }
+      t.rows.push_back({s.scene, method, std::to_string(runs), std::to_string(converged),
+                        std::to_string(diverged), std::to_string(runs - converged - diverged),
+                        failed.tellp() > 0 ? failed.str() : "–"});
+    }
+  }
+  return t;
+}
+
 }  // namespace
 
 void write_tolerance_section(ReportPage& page, const std::vector<ToleranceStudyScene>& studies) {
@@ -118,6 +154,7 @@ void write_tolerance_section(ReportPage& page, const std::vector<ToleranceStudyS
   }
   page.table(t);
   page.summary().headline += "\n" + markdown(t, page.summary().tables);
+  page.table(outcome_table(studies));
   page.csv("speedup", {"scene", "error_level", "iterative_time_s", "reference_time_s", "speedup"},
            rows);
   page.csv("tolerance_study",

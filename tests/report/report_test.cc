@@ -39,7 +39,7 @@ TEST(Report, FromTheFixture) {
   EXPECT_EQ(data.comparisons.size(), 1u);
   EXPECT_EQ(data.slice_studies.size(), 1u);
   const ReportSummary summary = write_report(data, out.string());
-  EXPECT_EQ(summary.tables, 6);
+  EXPECT_EQ(summary.tables, 7);
   EXPECT_TRUE(summary.missing.empty()) << summary.missing.front();
   EXPECT_GE(summary.figures, 5);
   const std::string md = slurp(out / "report.md");
@@ -106,7 +106,7 @@ TEST(Report, WithoutGnuplotTheTablesStillComeOut) {
   setenv("FIBRECHECK_GNUPLOT", "/nonexistent/gnuplot", 1);
   const ReportSummary summary = write_report(read_report_data({kFixture}), out.string());
   unsetenv("FIBRECHECK_GNUPLOT");
-  EXPECT_EQ(summary.tables, 6);
+  EXPECT_EQ(summary.tables, 7);
   EXPECT_EQ(summary.figures, 0);
   ASSERT_FALSE(summary.missing.empty());
   EXPECT_NE(summary.missing.front().find("gnuplot"), std::string::npos) << summary.missing.front();
