@@ -101,6 +101,7 @@ class IterativeSolver {
   bool just_touching() const;
   std::optional<Termination> forces_accurate_enough();
   bool must_measure_again();
+  void sequence_starts_afresh();
   std::optional<Termination> diverging(long iteration, double residual);
   long update(long iteration);
   std::optional<Termination> follow_the_fibres(long done);
@@ -342,6 +343,7 @@ std::optional<Termination> IterativeSolver::forces_accurate_enough() {
     }
     rule_->restart(state_);
     divergence_.reset();
+    sequence_starts_afresh();
   } else {
     const double floor = 1e-6 * options_.overlap_tolerance;
     if (overlap_tolerance_ <= floor) {
@@ -354,6 +356,7 @@ std::optional<Termination> IterativeSolver::forces_accurate_enough() {
     }
     const double shrink = std::clamp(0.5 * wanted / estimate_->force, 1e-3, 0.5);
     overlap_tolerance_ = std::max(shrink * overlap_tolerance_, floor);
+    sequence_starts_afresh();
   }
   estimate_.reset();
   if (use_working_set_) working_set_.enter(state_);
@@ -372,9 +375,17 @@ bool IterativeSolver::must_measure_again() {
   if (coulomb_ && tresca_.update(state_, fibres_)) {
     rule_->restart(state_);
     divergence_.reset();
+    sequence_starts_afresh();
     return true;
   }
   return false;
+}
+
+// The problem the sequence of linearised problems converges to has changed (new Tresca radii, a
+// correction from the estimate, a smaller t_d): its progress is judged from here.
+void IterativeSolver::sequence_starts_afresh() {
+  best_followed_ = INFINITY;
+  updates_without_progress_ = 0;
 }
 
 // Rules auto and accelerated solve the deformed contact as a sequence of problems, each linearised
