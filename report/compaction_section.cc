@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <iomanip>
+#include <optional>
 #include <sstream>
 
 #include "atomic_file.h"
@@ -248,6 +250,50 @@ void agreement_rows(Table& t, const CompactionStudyScene& s) {
                       std::to_string(a.steps), sci(a.pressure_error), sci(a.energy_error)});
 }
 
+// The pressure of `other` against `base` at the last step both converged on with wall force: a
+// sentence part "<what> x % higher/lower at Vf = …", or empty.
+std::string pressure_change(const CompactionRun* base, const CompactionRun* other,
+                            const std::string& what) {
+  if (!base || !other) return "";
+  for (std::size_t k = std::min(base->points.size(), other->points.size()); k-- > 0;) {
+    const CompactionPoint &b = base->points[k], &o = other->points[k];
+    if (b.status != "converged" || o.status != "converged" || !(b.pressure > 0.0)) continue;
+    const double change = 100.0 * (o.pressure / b.pressure - 1.0);
+    std::ostringstream out;
+    out.precision(2);
+    out << what << " " << std::fixed << std::fabs(change) << " % "
+        << (change >= 0 ? "higher" : "lower") << " at $V_f = " << std::setprecision(3)
+        << b.fibre_volume_fraction << "$";
+    return out.str();
+  }
+  return "";
+}
+
+// What friction and the contact geometry do to the pressure, on the largest tow studied.
+std::optional<std::string> compaction_finding(const std::vector<StoredCompactionStudy>& studies) {
+  for (auto it = studies.rbegin(); it != studies.rend(); ++it) {
+    const CompactionStudyScene& s = it->study;
+    const CompactionRun* frictionless = run_of(s, "iterative", 0.0, "none", "deformed");
+    const CompactionRun* linearised = run_of(s, "iterative", 0.0, "none", "linearised");
+    const CompactionRun* coulomb = nullptr;
+    for (const CompactionRun& r : s.runs)
+      if (r.solver == "iterative" && r.friction_model == "coulomb" && r.geometry == "deformed")
+        coulomb = &r;
+    const std::string geometry = pressure_change(frictionless, linearised, "the linearised contact");
+    const std::string friction =
+        coulomb ? pressure_change(frictionless, coulomb, "Coulomb friction (μ = " +
+                                                             seconds(coulomb->mu) + ")")
+                : "";
+    if (geometry.empty() && friction.empty()) continue;
+    std::string out = "Compacting " + s.scene + ", against the frictionless contact on the "
+                      "deformed fibres the pressure is " + geometry +
+                      (geometry.empty() || friction.empty() ? "" : "; ") + friction +
+                      " ([#tab:compaction_fits]).";
+    return out;
+  }
+  return std::nullopt;
+}
+
 }  // namespace
 
 void write_compaction_section(ReportPage& page, const std::vector<StoredCompactionStudy>& studies) {
@@ -275,7 +321,10 @@ void write_compaction_section(ReportPage& page, const std::vector<StoredCompacti
     agreement_figure(page, stored.study);
     cross_section_figures(page, stored);
   }
-  if (!fits.rows.empty()) page.table(fits);
+  if (!fits.rows.empty()) {
+    page.table(fits);
+    if (auto finding = compaction_finding(studies)) page.finding(*finding);
+  }
   if (!agreement.rows.empty()) page.table(agreement);
 }
 

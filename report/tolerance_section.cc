@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <optional>
 #include <sstream>
 
 #include "atomic_file.h"
@@ -125,6 +126,25 @@ Table outcome_table(const std::vector<ToleranceStudyScene>& studies) {
   return t;
 }
 
+// The speed-up at equal error at the finest error level both kinds of run reached, per scene.
+std::optional<std::string> speedup_finding(const std::vector<ToleranceStudyScene>& studies) {
+  std::ostringstream out;
+  for (const ToleranceStudyScene& s : studies) {
+    const SpeedUp* finest = nullptr;
+    for (const SpeedUp& u : s.speedups)
+      if (std::isfinite(u.speedup()) && (!finest || u.error_level < finest->error_level))
+        finest = &u;
+    if (!finest) continue;
+    out << (out.tellp() > 0 ? "; " : "At equal error the iterative method is faster than the "
+                                     "reference by ")
+        << seconds(finest->speedup()) << "× on " << s.scene << " (error "
+        << sci(finest->error_level) << ", rule " << finest->iterative_method << ")";
+  }
+  if (out.tellp() == 0) return std::nullopt;
+  out << " ([#tab:speedup]).";
+  return out.str();
+}
+
 }  // namespace
 
 void write_tolerance_section(ReportPage& page, const std::vector<ToleranceStudyScene>& studies) {
@@ -155,6 +175,7 @@ void write_tolerance_section(ReportPage& page, const std::vector<ToleranceStudyS
   page.table(t);
   page.summary().headline += "\n" + markdown(t, page.summary().tables);
   page.table(outcome_table(studies));
+  if (auto finding = speedup_finding(studies)) page.finding(*finding);
   page.csv("speedup", {"scene", "error_level", "iterative_time_s", "reference_time_s", "speedup"},
            rows);
   page.csv("tolerance_study",
