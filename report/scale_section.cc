@@ -62,37 +62,36 @@ std::string exponents_sentence(const ScaleStudy& study) {
   return exponents.empty() ? "" : " Time grows as fibres^a with a: " + exponents + ".";
 }
 
-/// Converged runs' time against fibres (log-log), one series per solver and method.
-void time_figure(ReportPage& page, const ScaleStudy& study) {
+/// A measure of the converged runs against fibres (log-log), one series per solver and method.
+void against_fibres_figure(ReportPage& page, const ScaleStudy& study, const std::string& name,
+                           const std::string& caption, const std::string& ylabel,
+                           double ScalePoint::*value) {
   std::vector<std::string> names;
   std::map<std::string, std::ostringstream> rows;
   for (const ScalePoint& p : study.points) {
-    if (p.status != "converged" || !(p.time_s > 0.0)) continue;
-    const std::string name = series_name(p);
-    if (std::find(names.begin(), names.end(), name) == names.end()) names.push_back(name);
-    rows[name] << p.fibres << " " << p.time_s << "\n";
+    if (p.status != "converged" || !(p.*value > 0.0)) continue;
+    const std::string series_title = series_name(p);
+    if (std::find(names.begin(), names.end(), series_title) == names.end())
+      names.push_back(series_title);
+    rows[series_title] << p.fibres << " " << p.*value << "\n";
   }
   std::vector<Gnuplot::Series> series;
   std::string plot;
-  for (const std::string& name : names) {
+  for (const std::string& title : names) {
     const int k = static_cast<int>(series.size());
-    series.push_back({rows[name].str()});
+    series.push_back({rows[title].str()});
     plot += std::string(plot.empty() ? "" : ", ") + "@DATA" + std::to_string(k) +
             "@ using 1:2 with linespoints pt " + std::to_string(5 + 2 * k) +
-            " ps 1.5 lw 2 title '" + name + "'";
+            " ps 1.5 lw 2 title '" + title + "'";
   }
   if (plot.empty()) return;
-  page.figure("scale_time",
-              "Solver time against the number of fibres (log-log), converged runs only"
-              " (exponents in the table's caption).",
-              "set xlabel 'fibres'\nset ylabel 'time (s)'\nset logscale xy\nset format y "
-              "'10^{%L}'\nset key top left\nset grid\nset offsets graph 0.05, graph 0.05, "
-              "0, 0\nplot " +
+  page.figure(name, caption,
+              "set xlabel 'fibres'\nset ylabel '" + ylabel +
+                  "'\nset logscale xy\nset format y '10^{%L}'\nset key outside right top\nset "
+                  "grid\nset offsets graph 0.05, graph 0.05, 0, 0\nplot " +
                   plot,
               series);
 }
-
-}  // namespace
 
 // The largest tow the iterative solver took, with its time, and the reference's largest.
 std::optional<std::string> scale_finding(const std::vector<ScaleStudy>& studies) {
@@ -120,6 +119,8 @@ std::optional<std::string> scale_finding(const std::vector<ScaleStudy>& studies)
   return out.str();
 }
 
+}  // namespace
+
 void write_scale_section(ReportPage& page, const std::vector<ScaleStudy>& studies) {
   if (studies.empty()) return;
   page.section(
@@ -135,7 +136,14 @@ void write_scale_section(ReportPage& page, const std::vector<ScaleStudy>& studie
     Table t = scale_table(study);
     t.caption += exponents_sentence(study);
     page.table(t);
-    time_figure(page, study);
+    against_fibres_figure(page, study, "scale_time",
+                          "Solver time against the number of fibres (log-log), converged runs "
+                          "only (exponents in [#tab:scale]'s caption).",
+                          "time (s)", &ScalePoint::time_s);
+    against_fibres_figure(page, study, "scale_memory",
+                          "Peak memory against the number of fibres (log-log), converged runs "
+                          "only: the process's (the largest process's under mpiexec).",
+                          "peak memory (MB)", &ScalePoint::peak_memory_mb);
   }
   if (auto finding = scale_finding(studies)) page.finding(*finding);
 }
