@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
-#include <iomanip>
 #include <optional>
 #include <sstream>
 
@@ -169,8 +168,8 @@ void agreement_figure(ReportPage& page, const CompactionStudyScene& s) {
                   " against the reference's with the same mu: the pressure difference at "
                   "each step, relative to the reference curve's largest pressure.",
               "set xlabel 'fibre volume fraction V_f'\nset ylabel '|p_{it} - p_{ref}| / "
-              "max p_{ref}'\nset logscale y\nset format y '10^{%L}'\nset key top "
-              "left\nset grid\nset offsets graph 0.05, graph 0.05, 0, 0\nplot " +
+              "max p_{ref}'\nset logscale y\nset format y '10^{%L}'\nset key "
+              "outside top center horizontal\nset grid\nset offsets graph 0.05, graph 0.05, 0, 0\nplot " +
                   plot,
               errors);
 }
@@ -260,10 +259,9 @@ std::string pressure_change(const CompactionRun* base, const CompactionRun* othe
     if (b.status != "converged" || o.status != "converged" || !(b.pressure > 0.0)) continue;
     const double change = 100.0 * (o.pressure / b.pressure - 1.0);
     std::ostringstream out;
-    out.precision(2);
-    out << what << " " << std::fixed << std::fabs(change) << " % "
-        << (change >= 0 ? "higher" : "lower") << " at $V_f = " << std::setprecision(3)
-        << b.fibre_volume_fraction << "$";
+    out << what << " a pressure " << seconds(std::fabs(change)) << " % "
+        << (change >= 0 ? "higher" : "lower") << " at $V_f = " << fixed3(b.fibre_volume_fraction)
+        << "$";
     return out.str();
   }
   return "";
@@ -279,14 +277,15 @@ std::optional<std::string> compaction_finding(const std::vector<StoredCompaction
     for (const CompactionRun& r : s.runs)
       if (r.solver == "iterative" && r.friction_model == "coulomb" && r.geometry == "deformed")
         coulomb = &r;
-    const std::string geometry = pressure_change(frictionless, linearised, "the linearised contact");
+    const std::string geometry =
+        pressure_change(frictionless, linearised, "the linearised contact gives");
     const std::string friction =
         coulomb ? pressure_change(frictionless, coulomb, "Coulomb friction (μ = " +
-                                                             seconds(coulomb->mu) + ")")
+                                                             seconds(coulomb->mu) + ") gives")
                 : "";
     if (geometry.empty() && friction.empty()) continue;
     std::string out = "Compacting " + s.scene + ", against the frictionless contact on the "
-                      "deformed fibres the pressure is " + geometry +
+                      "deformed fibres, " + geometry +
                       (geometry.empty() || friction.empty() ? "" : "; ") + friction +
                       " ([#tab:compaction_fits]).";
     return out;

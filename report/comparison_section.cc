@@ -87,7 +87,7 @@ void history_figure(ReportPage& page, const StoredComparison& c) {
           "rule, Eq. 4.34 (right), at each recorded iteration.",
       "set logscale x\nset logscale y\nset xlabel 'iteration'\nset ylabel 'largest overlap "
       "(mm)'\nset y2label 'strain energy (N mm)'\nset y2tics\nset ytics nomirror\nset format y "
-      "'10^{%L}'\nset key center right\nset grid\nplot @DATA0@ using 1:2 with linespoints pt 7 "
+      "'10^{%L}'\nset key outside top center horizontal\nset grid\nplot @DATA0@ using 1:2 with linespoints pt 7 "
       "ps 0.5 lw 2 title 'largest overlap', @DATA1@ using 1:2 axes x1y2 with lines lw 2 dt 2 "
       "title 'strain energy'",
       {{overlap.str()}, {energy.str()}});
@@ -161,7 +161,7 @@ void error_split_figure(ReportPage& page, const std::vector<StoredComparison>& c
       "to round-off or not measured ([#tab:comparison]).",
       "set style data histograms\nset style histogram clustered gap 1\nset style fill solid "
       "0.8 border -1\nset logscale y\nset yrange [1e-16:*]\nset format y '10^{%L}'\nset "
-      "ylabel 'relative error'\nset xtics rotate by -30 noenhanced\nset key top left\nset grid "
+      "ylabel 'relative error'\nset xtics rotate by -30 noenhanced\nset key outside top center horizontal\nset grid "
       "y\nplot @DATA0@ using 2:xtic(1) title 'iteration' lc rgb '#3060c0', '' using 3 title "
       "'slicing' lc rgb '#e0a000', '' using 4 title 'geometry' lc rgb '#a02080'",
       {{rows.str()}});

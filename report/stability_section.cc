@@ -87,28 +87,28 @@ void step_figure(ReportPage& page, const StabilityStudyScene& s) {
               {{or_nan(converged)}, {or_nan(diverged)}, {or_nan(other)}});
 }
 
-// Where rule seed stops converging: the largest c/c_crit at which every run converged and the
-// smallest at which one did not, over the scenes studied.
+// Where rule seed stops converging: the smallest c/c_crit at which a run diverged, and the largest
+// below it at which one converged, over the scenes studied (a run capped at a small c is slow,
+// not unstable).
 std::optional<std::string> stability_finding(const std::vector<StabilityStudyScene>& studies) {
-  double stable = 0.0, unstable = INFINITY;
+  double unstable = INFINITY;
   for (const StabilityStudyScene& s : studies)
     for (const StepPoint& p : s.steps)
-      if (p.status == "converged")
-        stable = std::max(stable, p.fraction);
-      else
-        unstable = std::min(unstable, p.fraction);
+      if (p.status == "diverged") unstable = std::min(unstable, p.fraction);
+  double stable = 0.0;
+  for (const StabilityStudyScene& s : studies)
+    for (const StepPoint& p : s.steps)
+      if (p.status == "converged" && p.fraction < unstable) stable = std::max(stable, p.fraction);
   if (!(stable > 0.0)) return std::nullopt;
   std::ostringstream out;
   out << "The seed's force update converged up to $c = " << seconds(stable)
-      << "\\,c_\\mathrm{crit}$ on every scene studied";
+      << "\\,c_\\mathrm{crit}$";
   if (std::isfinite(unstable))
-    out << " and failed from $c = " << seconds(unstable)
-        << "\\,c_\\mathrm{crit}$ ([#tab:stability])";
-  out << ": the limit $c_\\mathrm{crit} = 2/\\lambda_{\\max}$ each run estimates is the one to "
-         "keep to.";
+    out << " and diverged from $c = " << seconds(unstable) << "\\,c_\\mathrm{crit}$";
+  out << " on the scenes studied ([#tab:stability]): the limit $c_\\mathrm{crit} = "
+         "2/\\lambda_{\\max}$ each run estimates is the one to keep to.";
   return out.str();
 }
-
 }  // namespace
 
 void write_stability_section(ReportPage& page, const std::vector<StabilityStudyScene>& studies) {
