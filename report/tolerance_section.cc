@@ -97,8 +97,8 @@ Table outcome_table(const std::vector<ToleranceStudyScene>& studies) {
   t.label = "outcomes";
   t.caption =
       "How the runs of the tolerance study ended, per scene and method: runs at each tolerance "
-      "(refinement for the reference) by status; the tolerances of the runs that did not "
-      "converge.";
+      "(refinement for the reference) by status; the range of tolerances of the runs that did "
+      "not converge.";
   t.header = {"Scene", "Method", "Runs", "Converged", "Diverged", "Other", "Not converged at"};
   for (const ToleranceStudyScene& s : studies) {
     std::vector<std::string> methods;
@@ -107,7 +107,7 @@ Table outcome_table(const std::vector<ToleranceStudyScene>& studies) {
         methods.push_back(p.method);
     for (const std::string& method : methods) {
       int runs = 0, converged = 0, diverged = 0;
-      std::ostringstream failed;
+      double lowest = INFINITY, highest = -INFINITY;
       for (const TolerancePoint& p : s.points) {
         if (p.method != method) continue;
         ++runs;
@@ -116,11 +116,15 @@ Table outcome_table(const std::vector<ToleranceStudyScene>& studies) {
           continue;
         }
         if (p.status == "diverged") ++diverged;
-        failed << (failed.tellp() > 0 ? ", " : "") << sci(p.parameter);
+        lowest = std::min(lowest, p.parameter);
+        highest = std::max(highest, p.parameter);
       }
+      const std::string failed = !std::isfinite(lowest) ? "–"
+                                 : lowest == highest   ? sci(lowest)
+                                                       : sci(lowest) + " to " + sci(highest);
       t.rows.push_back({s.scene, method, std::to_string(runs), std::to_string(converged),
                         std::to_string(diverged), std::to_string(runs - converged - diverged),
-                        failed.tellp() > 0 ? failed.str() : "–"});
+                        failed});
     }
   }
   return t;
@@ -143,6 +147,18 @@ std::optional<std::string> speedup_finding(const std::vector<ToleranceStudyScene
   if (out.tellp() == 0) return std::nullopt;
   out << " ([#tab:speedup]).";
   return out.str();
+}
+
+// The methods whose runs diverged at some tolerance, with how many of how many.
+std::optional<std::string> outcome_finding(const Table& outcomes) {
+  std::ostringstream out;
+  for (const auto& row : outcomes.rows) {
+    if (row[4] == "0") continue;
+    out << (out.tellp() > 0 ? ", " : "") << row[1] << " in " << row[4] << " of " << row[2]
+        << " on " << row[0];
+  }
+  if (out.tellp() == 0) return std::nullopt;
+  return "Over the tolerances studied, runs ended diverged: " + out.str() + " ([#tab:outcomes]).";
 }
 
 }  // namespace
@@ -174,7 +190,9 @@ void write_tolerance_section(ReportPage& page, const std::vector<ToleranceStudyS
   }
   page.table(t);
   page.summary().headline += "\n" + markdown(t, page.summary().tables);
-  page.table(outcome_table(studies));
+  const Table outcomes = outcome_table(studies);
+  page.table(outcomes);
+  if (auto finding = outcome_finding(outcomes)) page.finding(*finding);
   if (auto finding = speedup_finding(studies)) page.finding(*finding);
   page.csv("speedup", {"scene", "error_level", "iterative_time_s", "reference_time_s", "speedup"},
            rows);
