@@ -19,6 +19,7 @@ using TimesAndErrors = std::vector<std::pair<double, double>>;
 /// its Pareto front.
 struct MethodPoints {
   std::map<std::string, TimesAndErrors> all, fronts;
+  std::vector<double> failed_times;   ///< runs that did not converge: no error to plot
   double exact_reference_time = NAN;  ///< a reference that is its own truth: error zero
 };
 
@@ -28,6 +29,7 @@ MethodPoints method_points(const ToleranceStudyScene& s) {
     const double worst = p.errors.worst();
     if (p.method == "reference" && worst == 0.0 && p.status == "converged")
       m.exact_reference_time = p.time_s;
+    if (p.status != "converged" && p.time_s > 0) m.failed_times.push_back(p.time_s);
     if (p.status == "converged" && worst > 0 && p.time_s > 0) {
       m.all[p.method].push_back({p.time_s, worst});
       if (p.pareto) m.fronts[p.method].push_back({p.time_s, worst});
@@ -70,11 +72,23 @@ void error_against_time_figure(ReportPage& page, const ToleranceStudyScene& s) {
     ++colour;
   }
   if (k == 0) return;
+  // Runs that did not converge, at their run time along a row above every error drawn.
+  double top = 0.0;
+  for (const auto& [method, list] : m.all)
+    for (const auto& [time, error] : list) top = std::max(top, error);
+  if (!m.failed_times.empty()) {
+    std::ostringstream failed;
+    for (double time : m.failed_times) failed << time << " " << 3.0 * top << "\n";
+    series.push_back({failed.str()});
+    plot << ", @DATA" << k << "@ using 1:2 with points pt 2 ps 1.5 lw 2 lc rgb '#000000' title "
+            "'did not converge'";
+  }
   page.figure("error_vs_time_" + file_name_slug(s.scene),
               "Relative error against run time on " + s.scene +
                   ": every converged run of each update rule of the iterative method (overlap "
                   "tolerances and slice counts) and of the reference (refinements); the lines "
-                  "join each method's Pareto front.",
+                  "join each method's Pareto front; the runs that did not converge as crosses at "
+                  "their run time, in a row above the errors ([#tab:outcomes]).",
               plot.str(), series);
 }
 
