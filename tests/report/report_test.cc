@@ -58,6 +58,25 @@ TEST(Report, FromTheFixture) {
   EXPECT_NE(md.find("| coincident_same_supports | reference | unresolvable | converged | 1 | "
                     "0.0306 | – | no: status converged, expected unresolvable |"),
             std::string::npos);
+  // The tolerance study's outcomes: each method's runs counted by status, as the data say.
+  for (const ToleranceStudyScene& s : data.tolerance_studies)
+    for (const std::string method : {"seed 0.9", "auto", "accelerated"}) {
+      int runs = 0, converged = 0, diverged = 0;
+      for (const TolerancePoint& p : s.points) {
+        if (p.method != method) continue;
+        ++runs;
+        converged += p.status == "converged";
+        diverged += p.status == "diverged";
+      }
+      if (runs == 0) continue;
+      EXPECT_NE(md.find("| " + s.scene + " | " + method + " | " + std::to_string(runs) + " | " +
+                        std::to_string(converged) + " | " + std::to_string(diverged) + " | " +
+                        std::to_string(runs - converged - diverged) + " | "),
+                std::string::npos)
+          << method;
+    }
+  // The key findings open the report, before its first section.
+  EXPECT_LT(md.find("## Key findings"), md.find("## Accuracy on each scene"));
   EXPECT_EQ(count(md, "**Table "), summary.tables);
   EXPECT_EQ(count(md, "**Figure "), summary.figures);
   // Figures: PNG files with their signature, and SVG beside them.
