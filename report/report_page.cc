@@ -1,7 +1,5 @@
 #include "report_page.h"
 
-#include <algorithm>
-
 #include "atomic_file.h"
 #include "csv_file.h"
 

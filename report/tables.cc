@@ -151,6 +151,10 @@ std::string latex_escape(const std::string& text) {
   return out;
 }
 
+
+namespace {
+
+/// Whether a table cell is a number (or "–" for none): such columns are set flush right.
 bool is_numeric_cell(const std::string& cell) {
   if (cell.empty() || cell == "–" || cell == "-") return true;
   char* end = nullptr;
@@ -159,8 +163,6 @@ bool is_numeric_cell(const std::string& cell) {
   const std::string rest(end);
   return rest.empty() || rest == "%" || rest == "×";
 }
-
-namespace {
 
 bool is_numeric_column(const Table& t, std::size_t column) {
   for (const auto& row : t.rows)

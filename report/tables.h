@@ -39,7 +39,5 @@ std::string latex_escape(const std::string& text);
 /// the rest is latex_escape'd.
 std::string latex_text(const std::string& text);
 
-/// Whether a table cell is a number (or "–" for none): such columns are set flush right.
-bool is_numeric_cell(const std::string& cell);
 
 }  // namespace fibrecheck

@@ -20,6 +20,7 @@
 #include "input_error.h"
 #include "iterative_solver.h"
 #include "report_data.h"
+#include "slurp.h"
 #include "report_writer.h"
 #include "scale_study_record.h"
 #include "slice_study.h"
@@ -34,12 +35,6 @@ namespace {
 namespace fs = std::filesystem;
 
 const std::string kScenes = FIBRECHECK_SCENES_DIR;
-
-std::string slurp(const fs::path& path) {
-  std::stringstream s;
-  s << std::ifstream(path).rdbuf();
-  return s.str();
-}
 
 Result iterative(const Scene& scene) {
   return solve_iteratively(scene, SolverOptions::from_scene(scene));

@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "report_data.h"
+#include "slurp.h"
 #include "report_writer.h"
 #include "tables.h"
 
@@ -18,12 +19,6 @@ namespace fibrecheck {
 namespace {
 
 namespace fs = std::filesystem;
-
-std::string slurp(const fs::path& path) {
-  std::stringstream s;
-  s << std::ifstream(path).rdbuf();
-  return s.str();
-}
 
 bool is_ascii(const std::string& text) {
   for (char c : text)

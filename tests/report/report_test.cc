@@ -11,18 +11,13 @@
 
 #include "input_error.h"
 #include "report_data.h"
+#include "slurp.h"
 #include "report_writer.h"
 
 namespace fibrecheck {
 namespace {
 
 namespace fs = std::filesystem;
-
-std::string slurp(const fs::path& path) {
-  std::stringstream s;
-  s << std::ifstream(path).rdbuf();
-  return s.str();
-}
 
 int count(const std::string& text, const std::string& what) {
   int n = 0;

@@ -18,19 +18,13 @@
 #include "input_error.h"
 #include "iterative_solver.h"
 #include "scene.h"
+#include "slurp.h"
 
 namespace fibrecheck {
 namespace {
 
 using nlohmann::json;
 namespace fs = std::filesystem;
-
-std::string slurp(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
 
 /// Every node of a JSON document by pointer, so that one can be picked at random.
 void collect(const json& node, const json::json_pointer& at, std::vector<json::json_pointer>& all) {
