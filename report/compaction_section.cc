@@ -165,7 +165,7 @@ void agreement_figure(ReportPage& page, const CompactionStudyScene& s) {
   if (plot.empty()) return;
   page.figure("compaction_error_" + file_name_slug(s.scene),
               "The iterative compaction curve of " + s.scene +
-                  " against the reference's with the same mu: the pressure difference at "
+                  " against the reference's with the same friction coefficient μ: the pressure difference at "
                   "each step, relative to the reference curve's largest pressure.",
               "set xlabel 'fibre volume fraction V_f'\nset ylabel '|p_{it} - p_{ref}| / "
               "max p_{ref}'\nset logscale y\nset format y '10^{%L}'\nset key "
@@ -234,7 +234,7 @@ Table agreement_table() {
   Table agreement;
   agreement.label = "compaction_agreement";
   agreement.caption =
-      "The iterative solver's compaction curve against the reference's with the same mu: the "
+      "The iterative solver's compaction curve against the reference's with the same friction coefficient μ: the "
       "largest per-step difference in pressure, relative to the reference curve's largest "
       "pressure, and in strain energy, relative to its largest, over the steps both converged. "
       "The seed's friction rule is measured against exact Coulomb friction.";

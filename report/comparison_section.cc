@@ -160,7 +160,8 @@ void error_split_figure(ReportPage& page, const std::vector<StoredComparison>& c
       "against the deformed contact (geometry, on the same slices); bars at the floor are exact "
       "to round-off or not measured ([#tab:comparison]).",
       "set style data histograms\nset style histogram clustered gap 1\nset style fill solid "
-      "0.8 border -1\nset logscale y\nset yrange [1e-16:*]\nset format y '10^{%L}'\nset "
+      "0.8 border -1\nset logscale y\nset xrange [-0.6:" + std::to_string(scenes) +
+          " - 0.4]\nset yrange [1e-16:*]\nset format y '10^{%L}'\nset "
       "ylabel 'relative error'\nset xtics rotate by -30 noenhanced\nset key outside top center horizontal\nset grid "
       "y\nplot @DATA0@ using 2:xtic(1) title 'iteration' lc rgb '#3060c0', '' using 3 title "
       "'slicing' lc rgb '#e0a000', '' using 4 title 'geometry' lc rgb '#a02080'",

@@ -117,6 +117,32 @@ std::string section_walls(const Scene& scene, const SectionAxes& a, double far) 
   return walls.str();
 }
 
+/// A force in gnuplot's enhanced text: "1.2×10^{-5} N".
+std::string force_text(double force) {
+  const int exponent = static_cast<int>(std::floor(std::log10(force)));
+  std::ostringstream text;
+  text.precision(2);
+  text << force / std::pow(10.0, exponent) << "×10^{" << exponent << "} N";
+  return text.str();
+}
+
+/// The forces' scale drawn above the picture: for the normal forces and, where there are any,
+/// the friction, a bar one radius long (in the picture's units) after the force it stands for.
+std::string force_scale(const SectionForces& forces, double radius) {
+  std::ostringstream gp;
+  const bool friction = forces.largest_friction > 0.0;
+  gp << "set tmargin " << (friction ? 4 : 3) << "\n";
+  auto bar = [&](double row, const std::string& colour, const std::string& what, double force) {
+    gp << "set label '" << what << " " << force_text(force) << "' at graph 0.5, graph " << row
+       << " right offset -1, 0 front\n"
+       << "set arrow from graph 0.5, graph " << row << " rto first " << radius
+       << ", first 0 nohead lw 3 lc rgb '" << colour << "' front\n";
+  };
+  bar(friction ? 1.09 : 1.04, "#e0a000", "normal force", forces.largest_force);
+  if (friction) bar(1.035, "#e00000", "friction force", forces.largest_friction);
+  return gp.str();
+}
+
 std::string or_nan(const std::string& rows, const std::string& nan_row) {
   return rows.empty() ? nan_row : rows;
 }
@@ -145,16 +171,16 @@ void draw_cross_section(ReportPage& page, const std::string& name, const std::st
           "the contact forces of that slice as lines from each contact point: normal parts in "
           "orange (the largest, " +
           sci(forces.largest_force) +
-          " N, one radius long)" +
+          " N, one radius long, as the bar above)" +
           (forces.largest_friction > 0.0
                ? ", friction forces in red on their own scale (the largest, " +
-                     sci(forces.largest_friction) + " N, one radius long)."
+                     sci(forces.largest_friction) + " N, one radius long, the second bar)."
                : std::string(".")),
-      "set size ratio -1\n" + ranges +
+      "set size ratio -1\n" + ranges + force_scale(forces, circles.radius) +
           "set xlabel 'cross-section axis 1 (mm)'\nset ylabel 'cross-section axis 2 (mm)'\nset "
           "cblabel '|M| (N mm)'\nset cbrange [0:*]\nset rmargin 14\nset palette defined (0 "
           "'#2040c0', "
-          "0.5 '#20b040', 1 '#e02020')\nset key off\nset grid\nset format cb '%.1e'\nset clip "
+          "0.5 '#20b040', 1 '#e02020')\nset key off\nset grid\nset format cb '%.1t×10^{%T}'\nset clip "
           "two\nplot @DATA0@ using 1:2:3:4 with circles lc palette lw 3 fs empty, @DATA1@ using "
           "1:2:3:4 with vectors nohead lw 3 lc rgb '#e0a000', @DATA2@ using 1:2:3:4 with vectors "
           "nohead lw 3 lc rgb '#e00000', @DATA3@ using 1:2 with lines lw 2 lc rgb '#606060'",

@@ -16,6 +16,27 @@ Gnuplot::Gnuplot(std::string folder) : folder_(std::move(folder)) {
   available_ = std::system(probe.c_str()) == 0;
 }
 
+namespace {
+
+/// Linear axes end at the data with a small margin rather than at the next tic, so that data
+/// fill the frame; logarithmic axes keep gnuplot's whole decades, whose tics carry the labels. A
+/// script's own ranges and offsets come after this and win.
+std::string fitted_ranges(const std::string& script) {
+  const bool log_x = script.find("set logscale x") != std::string::npos;
+  const bool log_y = script.find("set logscale y") != std::string::npos ||
+                     script.find("set logscale xy") != std::string::npos;
+  std::string out;
+  if (!log_x) out += "set autoscale xfix\n";
+  if (!log_y) out += "set autoscale yfix\n";
+  const char* x_margin = log_x ? "0" : "graph 0.04";
+  const char* y_margin = log_y ? "0" : "graph 0.06";
+  out += std::string("set offsets ") + x_margin + ", " + x_margin + ", " + y_margin + ", " +
+         y_margin + "\n";
+  return out;
+}
+
+}  // namespace
+
 bool Gnuplot::plot(const std::string& name, const std::string& body,
                    const std::vector<Series>& series, std::string* why) {
   namespace fs = std::filesystem;
@@ -35,6 +56,7 @@ bool Gnuplot::plot(const std::string& name, const std::string& body,
      << ".gp` in the figures folder to draw it again.\n"
      << "set terminal pngcairo size 960,640 font 'Sans,14' enhanced\n"
      << "set output '" << name << ".png'\n"
+     << fitted_ranges(script)
      << script << "\n"
      << "set terminal svg size 960,640 font 'Sans,14' enhanced\n"
      << "set output '" << name << ".svg'\n"

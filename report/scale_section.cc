@@ -87,8 +87,9 @@ void against_fibres_figure(ReportPage& page, const ScaleStudy& study, const std:
   if (plot.empty()) return;
   page.figure(name, caption,
               "set xlabel 'fibres'\nset ylabel '" + ylabel +
-                  "'\nset logscale xy\nset format y '10^{%L}'\nset key outside right top\nset "
-                  "grid\nset offsets graph 0.05, graph 0.05, 0, 0\nplot " +
+                  "'\nset logscale xy\nset autoscale xfix\nset format y '10^{%L}'\nset key "
+                  "outside top center horizontal\nset grid\nset offsets graph 0.05, graph 0.05, "
+                  "0, 0\nplot " +
                   plot,
               series);
 }

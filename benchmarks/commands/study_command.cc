@@ -1,6 +1,7 @@
 #include "study_command.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <functional>
 #include <iostream>
@@ -69,12 +70,19 @@ int run_slices(const StudyArguments& args) {
 }
 
 void print(const ToleranceStudyScene& s) {
-  for (const SpeedUp& u : s.speedups)
+  for (const SpeedUp& u : s.speedups) {
+    if (std::isnan(u.iterative_time_s) || std::isnan(u.reference_time_s)) {
+      std::printf("%s: at error %.0e no converged run of the %s reaches it: no speed-up\n",
+                  s.scene.c_str(), u.error_level,
+                  std::isnan(u.iterative_time_s) ? "iterative method" : "reference");
+      continue;
+    }
     std::printf(
         "%s: at error %.0e the iterative method (%s) takes %.4g s, the reference "
         "%.4g s: speed-up %.3g\n",
         s.scene.c_str(), u.error_level, u.iterative_method.c_str(), u.iterative_time_s,
         u.reference_time_s, u.speedup());
+  }
 }
 
 int run_tolerance(const StudyArguments& args) {

@@ -69,7 +69,7 @@ void StudyProgress::start(std::size_t i, const std::string& what) {
        << std::fixed;
   line.precision(1);
   line << elapsed << " s elapsed";
-  if (done_ > 0) {
+  if (done_ > 0 && i < total_) {
     const double remaining = elapsed / done_ * (total_ - i);
     line << ", about " << remaining << " s to go";
   }

@@ -297,11 +297,11 @@ std::vector<ToleranceStudyScene> run_tolerance_study(const std::vector<Scene>& s
                                                      const std::string& folder) {
   StudyStore store(folder, "tolerance_study");
   const std::size_t rules = options.seed_fractions.size() + 2;
-  StudyProgress progress(
-      "tolerance study",
-      scenes.size() * (1 + rules * options.tolerances.size() * options.slice_factors.size() +
-                       options.refinements.size()),
-      options.quiet);
+  const std::size_t factors = options.against_slices ? 1 : options.slice_factors.size();
+  const std::size_t runs_per_scene =
+      1 + (rules * options.tolerances.size() + options.force_tolerances.size()) * factors +
+      options.refinements.size();
+  StudyProgress progress("tolerance study", scenes.size() * runs_per_scene, options.quiet);
   std::vector<ToleranceStudyScene> out;
   std::size_t index = 0;
   for (const Scene& scene : scenes)

@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -111,6 +112,38 @@ HarnessRun run_harness(const fs::path& folder) {
   std::ifstream in(scale / "scale_study.json");
   run.scale = nlohmann::json::parse(in).get<ScaleStudy>();
   return run;
+}
+
+// The progress lines count every run the tolerance study makes (rules at each tolerance, the
+// force-criterion runs, the reference, the ground truth): the last is "point N of N", and no
+// "to go" is estimated past the total.
+TEST(ToleranceStudyProgress, CountsEveryRunItMakes) {
+  const fs::path folder =
+      fs::path(::testing::TempDir()) / ("tolerance_progress_" + std::to_string(::getpid()));
+  fs::remove_all(folder);
+  ToleranceStudyOptions tolerance;
+  tolerance.tolerances = {1e-3};
+  tolerance.slice_factors = {1};
+  tolerance.refinements = {0};
+  tolerance.quiet = false;
+  ::testing::internal::CaptureStderr();
+  run_tolerance_study({read_scene(kScenes + "/two_fibres_crossing.json")}, tolerance,
+                      stand_in_solvers(), folder.string());
+  const std::string lines = ::testing::internal::GetCapturedStderr();
+  fs::remove_all(folder);
+  const std::size_t expected = 1 + (tolerance.seed_fractions.size() + 2) +
+                               tolerance.force_tolerances.size() + tolerance.refinements.size();
+  std::istringstream in(lines);
+  std::size_t last = 0;
+  for (std::string line; std::getline(in, line);) {
+    std::size_t point = 0, total = 0;
+    if (std::sscanf(line.c_str(), "  tolerance study: point %zu of %zu", &point, &total) != 2)
+      continue;
+    EXPECT_EQ(total, expected) << line;
+    EXPECT_LE(point, total) << line;
+    last = point;
+  }
+  EXPECT_EQ(last, expected) << lines;
 }
 
 class ReportFromHarness : public ::testing::Test {
