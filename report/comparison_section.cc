@@ -85,7 +85,8 @@ void history_figure(ReportPage& page, const StoredComparison& c) {
       "Convergence of the iterative method on " + scene + " (rule " + c.user.rule +
           "): the largest overlap (left, logarithmic) and the strain energy by the trapezium "
           "rule, Eq. 4.34 (right), at each recorded iteration.",
-      "set logscale x\nset logscale y\nset xlabel 'iteration'\nset ylabel 'largest overlap "
+      "set logscale x\nset logscale y\nset autoscale xfix\nset offsets graph 0.02, graph 0.02, 0, "
+      "0\nset xlabel 'iteration'\nset ylabel 'largest overlap "
       "(mm)'\nset y2label 'strain energy (N mm)'\nset y2tics\nset ytics nomirror\nset format y "
       "'10^{%L}'\nset key outside top center horizontal\nset grid\nplot @DATA0@ using 1:2 with linespoints pt 7 "
       "ps 0.5 lw 2 title 'largest overlap', @DATA1@ using 1:2 axes x1y2 with lines lw 2 dt 2 "

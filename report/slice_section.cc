@@ -37,7 +37,9 @@ void error_figure(ReportPage& page, const SliceStudyScene& s) {
               "Relative error of the iterative method on " + s.scene +
                   " against the continuous reference, per slice count n (rule " + s.rule +
                   "), with the observed orders of convergence.",
-              "set logscale xy\nset xlabel 'slices n'\nset ylabel 'relative error'\nset format "
+              "set logscale xy\nset autoscale xfix\nset offsets graph 0.04, graph 0.04, 0, 0\n"
+              "set xtics (1, 2, 4, 8, 16, 32, 64, 128, 256, 512, 1024, 2048, 4096)\n"
+              "set xlabel 'slices n'\nset ylabel 'relative error'\nset format "
               "y '10^{%L}'\nset key top right\nset grid\nplot @DATA0@ using 1:2 with "
               "linespoints pt 7 lw 2 title 'deflection, order " +
                   seconds(s.order.deflection) +

@@ -49,14 +49,15 @@ void error_against_time_figure(ReportPage& page, const ToleranceStudyScene& s) {
   MethodPoints m = method_points(s);
   std::vector<Gnuplot::Series> series;
   std::ostringstream plot;
-  plot << "set logscale xy\nset xlabel 'run time (s)'\nset ylabel 'relative error (worst of "
-          "deflection, force, energy)'\nset format y '10^{%L}'\nset format x '10^{%L}'\nset key "
-          "outside right top\nset grid\n";
+  plot << "set logscale xy\nset autoscale xfix\nset offsets graph 0.04, graph 0.04, 0, 0\n"
+          "set xlabel 'run time (s)'\nset ylabel 'relative error (worst of "
+          "deflection, force, energy)'\nset format y '10^{%L}'\nset xtics (0.001, 0.002, 0.005, 0.01, 0.02, 0.05, 0.1, 0.2, 0.5, 1, 2, 5, 10, 20, 50, 100, 200, 500, 1000, 2000, 5000, 10000)\nset key "
+          "outside top center horizontal maxrows 2\nset grid\n";
   if (std::isfinite(m.exact_reference_time))
     plot << "set arrow from " << m.exact_reference_time << ", graph 0 to " << m.exact_reference_time
          << ", graph 1 nohead dt 2 lw 2 lc rgb '#56b4e9'\nset label 'reference (exact: it is "
             "the truth)' at "
-         << m.exact_reference_time << ", graph 0.95 right offset -0.5, 0\n";
+         << m.exact_reference_time << ", graph 0.05 right offset -0.5, 0\n";
   plot << "plot ";
   int k = 0, colour = 1;
   const int types[] = {7, 5, 9, 11, 13, 15};
