@@ -163,15 +163,17 @@ void agreement_figure(ReportPage& page, const CompactionStudyScene& s) {
             " ps 1.5 lw 2 title '" + run_title(*it) + "'";
   }
   if (plot.empty()) return;
-  page.figure("compaction_error_" + file_name_slug(s.scene),
-              "The iterative compaction curve of " + s.scene +
-                  " against the reference's with the same friction coefficient μ: the pressure difference at "
-                  "each step, relative to the reference curve's largest pressure.",
-              "set xlabel 'fibre volume fraction V_f'\nset ylabel '|p_{it} - p_{ref}| / "
-              "max p_{ref}'\nset logscale y\nset format y '10^{%L}'\nset key "
-              "outside top center horizontal\nset grid\nset offsets graph 0.05, graph 0.05, 0, 0\nplot " +
-                  plot,
-              errors);
+  page.figure(
+      "compaction_error_" + file_name_slug(s.scene),
+      "The iterative compaction curve of " + s.scene +
+          " against the reference's with the same friction coefficient μ: the pressure difference "
+          "at "
+          "each step, relative to the reference curve's largest pressure.",
+      "set xlabel 'fibre volume fraction V_f'\nset ylabel '|p_{it} - p_{ref}| / "
+      "max p_{ref}'\nset logscale y\nset format y '10^{%L}'\nset key "
+      "outside top center horizontal\nset grid\nset offsets graph 0.05, graph 0.05, 0, 0\nplot " +
+          plot,
+      errors);
 }
 
 /// The kept states of the iterative runs drawn like Figure 4.14: the run with the scene's
@@ -234,11 +236,12 @@ Table agreement_table() {
   Table agreement;
   agreement.label = "compaction_agreement";
   agreement.caption =
-      "The iterative solver's compaction curve against the reference's with the same friction coefficient μ: the "
+      "The iterative solver's compaction curve against the reference's with the same friction "
+      "coefficient μ: the "
       "largest per-step difference in pressure, relative to the reference curve's largest "
       "pressure, and in strain energy, relative to its largest, over the steps both converged. "
       "The seed's friction rule is measured against exact Coulomb friction.";
-  agreement.header = {"Scene",   "μ",    "Iterative friction", "Reference friction",
+  agreement.header = {"Scene",   "μ",     "Iterative friction", "Reference friction",
                       "Contact", "Steps", "Pressure error",     "Energy error"};
   return agreement;
 }
@@ -280,13 +283,14 @@ std::optional<std::string> compaction_finding(const std::vector<StoredCompaction
     const std::string geometry =
         pressure_change(frictionless, linearised, "the linearised contact gives");
     const std::string friction =
-        coulomb ? pressure_change(frictionless, coulomb, "Coulomb friction (μ = " +
-                                                             seconds(coulomb->mu) + ") gives")
+        coulomb ? pressure_change(frictionless, coulomb,
+                                  "Coulomb friction (μ = " + seconds(coulomb->mu) + ") gives")
                 : "";
     if (geometry.empty() && friction.empty()) continue;
-    std::string out = "Compacting " + s.scene + ", against the frictionless contact on the "
-                      "deformed fibres, " + geometry +
-                      (geometry.empty() || friction.empty() ? "" : "; ") + friction +
+    std::string out = "Compacting " + s.scene +
+                      ", against the frictionless contact on the "
+                      "deformed fibres, " +
+                      geometry + (geometry.empty() || friction.empty() ? "" : "; ") + friction +
                       " ([#tab:compaction_fits]).";
     return out;
   }
@@ -303,7 +307,8 @@ void write_compaction_section(ReportPage& page, const std::vector<StoredCompacti
       "the tow's centre, walls included), each step starting from the last. The pressure is the "
       "mean over the walls of the wall force over the wall's area; Vf the fibres' cross-sections "
       "over the area between the walls. Curves are fitted on the steps where the walls carry "
-      "force by van Wyk's $p = kE(V_f^3 - V_{f0}^3)$ [@vanwyk1946] and Toll's $p = kE(V_f^n - V_{f0}^n)$ [@toll1998]. Friction: "
+      "force by van Wyk's $p = kE(V_f^3 - V_{f0}^3)$ [@vanwyk1946] and Toll's $p = kE(V_f^n - "
+      "V_{f0}^n)$ [@toll1998]. Friction: "
       "Coulomb's law per step (stick while |F| < muN, slip against the relative motion "
       "otherwise), which both solvers solve as a Tresca fixed point (the radii muN updated "
       "outside a convex inner problem, relaxed; the reference solves each inner problem exactly, "

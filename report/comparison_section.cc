@@ -63,8 +63,8 @@ std::optional<std::string> accuracy_finding(const std::vector<StoredComparison>&
       << " run as specified, the iterative method's force "
       << "error against the ground truth is at most " << sci(worst->total.force) << " ("
       << worst->scene << ", [#tab:comparison]), mostly from its "
-      << (slicing > iteration ? "slices" : "stopping criterion") << " (slicing "
-      << sci(slicing) << ", iteration " << sci(iteration) << ").";
+      << (slicing > iteration ? "slices" : "stopping criterion") << " (slicing " << sci(slicing)
+      << ", iteration " << sci(iteration) << ").";
   return out.str();
 }
 
@@ -88,7 +88,8 @@ void history_figure(ReportPage& page, const StoredComparison& c) {
       "set logscale x\nset logscale y\nset autoscale xfix\nset offsets graph 0.02, graph 0.02, 0, "
       "0\nset xlabel 'iteration'\nset ylabel 'largest overlap "
       "(mm)'\nset y2label 'strain energy (N mm)'\nset y2tics\nset ytics nomirror\nset format y "
-      "'10^{%L}'\nset key outside top center horizontal\nset grid\nplot @DATA0@ using 1:2 with linespoints pt 7 "
+      "'10^{%L}'\nset key outside top center horizontal\nset grid\nplot @DATA0@ using 1:2 with "
+      "linespoints pt 7 "
       "ps 0.5 lw 2 title 'largest overlap', @DATA1@ using 1:2 axes x1y2 with lines lw 2 dt 2 "
       "title 'strain energy'",
       {{overlap.str()}, {energy.str()}});
@@ -149,8 +150,8 @@ void error_split_figure(ReportPage& page, const std::vector<StoredComparison>& c
   for (const StoredComparison& c : comparisons) {
     const ComparisonRecord& s = c.summary;
     if (!s.comparable) continue;
-    rows << '"' << s.scene << "\" " << bar(s.iteration.worst()) << " "
-         << bar(s.slicing.worst()) << " " << bar(s.geometry.worst()) << "\n";
+    rows << '"' << s.scene << "\" " << bar(s.iteration.worst()) << " " << bar(s.slicing.worst())
+         << " " << bar(s.geometry.worst()) << "\n";
     ++scenes;
   }
   if (scenes < 2) return;
@@ -161,11 +162,13 @@ void error_split_figure(ReportPage& page, const std::vector<StoredComparison>& c
       "against the deformed contact (geometry, on the same slices); bars at the floor are exact "
       "to round-off or not measured ([#tab:comparison]).",
       "set style data histograms\nset style histogram clustered gap 1\nset style fill solid "
-      "0.8 border -1\nset logscale y\nset xrange [-0.6:" + std::to_string(scenes) +
+      "0.8 border -1\nset logscale y\nset xrange [-0.6:" +
+          std::to_string(scenes) +
           " - 0.4]\nset yrange [1e-16:*]\nset format y '10^{%L}'\nset "
-      "ylabel 'relative error'\nset xtics rotate by -30 noenhanced\nset key outside top center horizontal\nset grid "
-      "y\nplot @DATA0@ using 2:xtic(1) title 'iteration' lc rgb '#3060c0', '' using 3 title "
-      "'slicing' lc rgb '#e0a000', '' using 4 title 'geometry' lc rgb '#a02080'",
+          "ylabel 'relative error'\nset xtics rotate by -30 noenhanced\nset key outside top center "
+          "horizontal\nset grid "
+          "y\nplot @DATA0@ using 2:xtic(1) title 'iteration' lc rgb '#3060c0', '' using 3 title "
+          "'slicing' lc rgb '#e0a000', '' using 4 title 'geometry' lc rgb '#a02080'",
       {{rows.str()}});
 }
 

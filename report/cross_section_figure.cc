@@ -170,8 +170,7 @@ void draw_cross_section(ReportPage& page, const std::string& name, const std::st
           "mid-length, the rim coloured by the bending moment |M| there, the walls in grey, and "
           "the contact forces of that slice as lines from each contact point: normal parts in "
           "orange (the largest, " +
-          sci(forces.largest_force) +
-          " N, one radius long, as the bar above)" +
+          sci(forces.largest_force) + " N, one radius long, as the bar above)" +
           (forces.largest_friction > 0.0
                ? ", friction forces in red on their own scale (the largest, " +
                      sci(forces.largest_friction) + " N, one radius long, the second bar)."
@@ -180,7 +179,8 @@ void draw_cross_section(ReportPage& page, const std::string& name, const std::st
           "set xlabel 'cross-section axis 1 (mm)'\nset ylabel 'cross-section axis 2 (mm)'\nset "
           "cblabel '|M| (N mm)'\nset cbrange [0:*]\nset rmargin 14\nset palette defined (0 "
           "'#2040c0', "
-          "0.5 '#20b040', 1 '#e02020')\nset key off\nset grid\nset format cb '%.1t×10^{%T}'\nset clip "
+          "0.5 '#20b040', 1 '#e02020')\nset key off\nset grid\nset format cb '%.1t×10^{%T}'\nset "
+          "clip "
           "two\nplot @DATA0@ using 1:2:3:4 with circles lc palette lw 3 fs empty, @DATA1@ using "
           "1:2:3:4 with vectors nohead lw 3 lc rgb '#e0a000', @DATA2@ using 1:2:3:4 with vectors "
           "nohead lw 3 lc rgb '#e00000', @DATA3@ using 1:2 with lines lw 2 lc rgb '#606060'",

@@ -56,8 +56,7 @@ bool Gnuplot::plot(const std::string& name, const std::string& body,
      << ".gp` in the figures folder to draw it again.\n"
      << "set terminal pngcairo size 960,640 font 'Sans,14' enhanced\n"
      << "set output '" << name << ".png'\n"
-     << fitted_ranges(script)
-     << script << "\n"
+     << fitted_ranges(script) << script << "\n"
      << "set terminal svg size 960,640 font 'Sans,14' enhanced\n"
      << "set output '" << name << ".svg'\n"
      << "replot\n"

@@ -51,7 +51,9 @@ void error_against_time_figure(ReportPage& page, const ToleranceStudyScene& s) {
   std::ostringstream plot;
   plot << "set logscale xy\nset autoscale xfix\nset offsets graph 0.04, graph 0.04, 0, 0\n"
           "set xlabel 'run time (s)'\nset ylabel 'relative error (worst of "
-          "deflection, force, energy)'\nset format y '10^{%L}'\nset xtics (0.001, 0.002, 0.005, 0.01, 0.02, 0.05, 0.1, 0.2, 0.5, 1, 2, 5, 10, 20, 50, 100, 200, 500, 1000, 2000, 5000, 10000)\nset key "
+          "deflection, force, energy)'\nset format y '10^{%L}'\nset xtics (0.001, 0.002, 0.005, "
+          "0.01, 0.02, 0.05, 0.1, 0.2, 0.5, 1, 2, 5, 10, 20, 50, 100, 200, 500, 1000, 2000, 5000, "
+          "10000)\nset key "
           "outside top center horizontal maxrows 2\nset grid\n";
   if (std::isfinite(m.exact_reference_time))
     plot << "set arrow from " << m.exact_reference_time << ", graph 0 to " << m.exact_reference_time
@@ -81,7 +83,8 @@ void error_against_time_figure(ReportPage& page, const ToleranceStudyScene& s) {
     std::ostringstream failed;
     for (double time : m.failed_times) failed << time << " " << 3.0 * top << "\n";
     series.push_back({failed.str()});
-    plot << ", @DATA" << k << "@ using 1:2 with points pt 2 ps 1.5 lw 2 lc rgb '#000000' title "
+    plot << ", @DATA" << k
+         << "@ using 1:2 with points pt 2 ps 1.5 lw 2 lc rgb '#000000' title "
             "'did not converge'";
   }
   page.figure("error_vs_time_" + file_name_slug(s.scene),
@@ -135,8 +138,8 @@ Table outcome_table(const std::vector<ToleranceStudyScene>& studies) {
         highest = std::max(highest, p.parameter);
       }
       const std::string failed = !std::isfinite(lowest) ? "–"
-                                 : lowest == highest   ? sci(lowest)
-                                                       : sci(lowest) + " to " + sci(highest);
+                                 : lowest == highest    ? sci(lowest)
+                                                        : sci(lowest) + " to " + sci(highest);
       t.rows.push_back({s.scene, method, std::to_string(runs), std::to_string(converged),
                         std::to_string(diverged), std::to_string(runs - converged - diverged),
                         failed});
@@ -154,8 +157,9 @@ std::optional<std::string> speedup_finding(const std::vector<ToleranceStudyScene
       if (std::isfinite(u.speedup()) && (!finest || u.error_level < finest->error_level))
         finest = &u;
     if (!finest) continue;
-    out << (out.tellp() > 0 ? "; " : "At equal error the iterative method is faster than the "
-                                     "reference by ")
+    out << (out.tellp() > 0 ? "; "
+                            : "At equal error the iterative method is faster than the "
+                              "reference by ")
         << seconds(finest->speedup()) << "× on " << s.scene << " (error "
         << sci(finest->error_level) << ", rule " << finest->iterative_method << ")";
   }
@@ -169,8 +173,8 @@ std::optional<std::string> outcome_finding(const Table& outcomes) {
   std::ostringstream out;
   for (const auto& row : outcomes.rows) {
     if (row[4] == "0") continue;
-    out << (out.tellp() > 0 ? ", " : "") << row[1] << " in " << row[4] << " of " << row[2]
-        << " on " << row[0];
+    out << (out.tellp() > 0 ? ", " : "") << row[1] << " in " << row[4] << " of " << row[2] << " on "
+        << row[0];
   }
   if (out.tellp() == 0) return std::nullopt;
   return "Over the tolerances studied, runs ended diverged: " + out.str() + " ([#tab:outcomes]).";
