@@ -88,7 +88,7 @@ void ReferenceSolver::follow_the_deformed_fibres() {
     contacts_ = std::move(followed);
     ++geometric_updates_;
     assemble_about_normals();
-    solve();
+    solve(Start::last_answer);
     if (!trouble_.why.empty()) return;
   }
   std::ostringstream out;

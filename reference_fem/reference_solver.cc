@@ -74,7 +74,7 @@ Result ReferenceSolver::run() {
     make_grid();
     setup_system();
     assemble_system();
-    solve();
+    solve(outer > 1 ? Start::last_answer : Start::frictionless);
     if (detector_.geometry().deformed() && trouble_.why.empty()) follow_the_deformed_fibres();
     if (!trouble_.why.empty()) {
       end = OuterEnd::no_answer;
@@ -148,9 +148,11 @@ void ReferenceSolver::setup_system() {
 }
 
 // solve: the complementarity problem, exactly, starting from the last pushing set; with friction
-// then Coulomb's law from the frictionless answer. An overlap at a point neither fibre can move
-// (both pinned there) has no answer; a contact there that does not overlap is left out.
-void ReferenceSolver::solve() {
+// then Coulomb's law from the frictionless answer, or straight from the last frictional answer
+// (a geometric update of the deformed contact changes that answer little). An overlap at a point
+// neither fibre can move (both pinned there) has no answer; a contact there that does not overlap
+// is left out.
+void ReferenceSolver::solve(Start start) {
   dealii::TimerOutput::Scope scope(timer_, "solve");
   const Eigen::Index n = d0_.size();
   if (trouble_.non_finite) {
@@ -175,7 +177,13 @@ void ReferenceSolver::solve() {
   // threshold leaves a fine continuous line contact with too few points pushing.
   threshold_ =
       std::max(1e-6 * tolerance_, 1e-13 * (d0_.size() > 0 ? d0_.cwiseAbs().maxCoeff() : 0.0));
-  if (solve_frictionless(excluded) && mu_ > 0.0) solve_friction(excluded);
+  if (mu_ > 0.0 && start == Start::last_answer) {
+    pushing_.resize(n, 0);
+    P_.conservativeResize(n);
+    solve_friction(excluded, start);
+  } else if (solve_frictionless(excluded) && mu_ > 0.0) {
+    solve_friction(excluded, Start::frictionless);
+  }
   if (options_.contact_problem) keep_contact_problem(excluded);
 }
 
@@ -199,8 +207,9 @@ bool ReferenceSolver::solve_frictionless(const std::vector<char>& excluded) {
 }
 
 // solve_friction: Coulomb's law at every candidate, exactly (tresca_fixed_point.h), from the
-// frictionless answer just found and the friction forces the candidates carried over.
-void ReferenceSolver::solve_friction(const std::vector<char>& excluded) {
+// frictionless answer just found (or the normal forces of the last frictional answer) and the
+// friction forces the candidates carried over.
+void ReferenceSolver::solve_friction(const std::vector<char>& excluded, Start start) {
   FrictionalProblem& problem = friction_problem_;
   problem.excluded = excluded;
   const Eigen::Index n = d0_.size();
@@ -208,7 +217,7 @@ void ReferenceSolver::solve_friction(const std::vector<char>& excluded) {
   for (Eigen::Index k = 0; k < n; ++k) {
     const Contact& c = contacts_[k];
     const Eigen::Index o = problem.offset[k];
-    r[o] = P_[k];
+    r[o] = start == Start::last_answer ? c.force : P_[k];
     if (c.tangents >= 1) r[o + 1] = c.tangent.dot(c.friction);
     if (c.tangents == 2) r[o + 2] = c.normal.cross(c.tangent).dot(c.friction);
   }

@@ -71,7 +71,10 @@ class ReferenceSolver {
   void make_grid();
   void setup_system();
   void assemble_system();
-  void solve();
+  /// From the answer of the last solve (each geometric update of the deformed contact starts
+  /// from the one before), or with friction from the frictionless answer.
+  enum class Start { frictionless, last_answer };
+  void solve(Start start = Start::frictionless);
   void follow_the_deformed_fibres();
   bool update_active_set();
   void report_progress(int outer) const;
@@ -105,7 +108,7 @@ class ReferenceSolver {
                                    const std::vector<std::vector<ContactSide>>& sides);
   Eigen::Vector3d reaction_direction(Eigen::Index k, int i, bool on_a) const;
   bool solve_frictionless(const std::vector<char>& excluded);
-  void solve_friction(const std::vector<char>& excluded);
+  void solve_friction(const std::vector<char>& excluded, Start start);
   /// The problem just solved, with its answer, for options_.contact_problem.
   void keep_contact_problem(const std::vector<char>& excluded);
 
