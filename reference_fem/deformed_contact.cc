@@ -83,6 +83,7 @@ void ReferenceSolver::follow_the_deformed_fibres() {
         residual <= settled || (residual < tolerance_ && residual > 0.5 * before);
     const bool turn_stalled = turned < 1e2 * kSettledTurn && turned > 0.5 * turned_before;
     if (gaps_closed && (turned <= kSettledTurn || turn_stalled)) return;
+    report_geometric_update(residual, turned);
     before = residual;
     turned_before = turned;
     contacts_ = std::move(followed);
@@ -99,6 +100,17 @@ void ReferenceSolver::follow_the_deformed_fibres() {
       << residual << " mm";
   trouble_.why = out.str();
   trouble_.normals_unsettled = true;
+}
+
+// A line per geometric update, for options_.progress: a step on compacted tows can take many.
+void ReferenceSolver::report_geometric_update(double residual, double turned) const {
+  if (!options_.progress) return;
+  std::ostringstream out;
+  out.precision(3);
+  out << "  geometric update " << geometric_updates_ + 1 << ": the seed's test leaves " << residual
+      << " mm, normals turn by up to " << turned;
+  if (mu_ > 0.0) out << "; " << tresca_updates_ << " Tresca updates so far";
+  options_.progress(out.str());
 }
 
 }  // namespace fibrecheck

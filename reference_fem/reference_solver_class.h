@@ -78,6 +78,7 @@ class ReferenceSolver {
   void follow_the_deformed_fibres();
   bool update_active_set();
   void report_progress(int outer) const;
+  void report_geometric_update(double residual, double turned) const;
   void output_results(Result& r);
   void hand_over_contact_problem(Status status);
   void describe_run(Result& r, const std::vector<std::string>& ambiguous, int outer,
