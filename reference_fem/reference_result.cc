@@ -24,12 +24,14 @@ Result reference_outcome(const std::string& scene, OuterEnd end, const Reference
     r.criterion = Criterion::active_set;
   } else if (end == OuterEnd::no_answer) {
     const bool capped = trouble.friction_unsettled || trouble.normals_unsettled;
-    r.status = trouble.non_finite ? Status::diverged
-               : capped           ? Status::max_iterations
-                                  : Status::unresolvable;
-    r.criterion = trouble.non_finite ? Criterion::non_finite
-                  : capped           ? Criterion::max_iterations
-                                     : Criterion::unresolvable;
+    r.status = trouble.non_finite     ? Status::diverged
+               : capped               ? Status::max_iterations
+               : trouble.beyond_reach ? Status::beyond_reach
+                                      : Status::unresolvable;
+    r.criterion = trouble.non_finite     ? Criterion::non_finite
+                  : capped               ? Criterion::max_iterations
+                  : trouble.beyond_reach ? Criterion::memory
+                                         : Criterion::unresolvable;
     r.message = trouble.why;
   } else {
     r.message = "the candidates still changed after " + std::to_string(max_outer_iterations) +

@@ -19,6 +19,7 @@ struct ReferenceTrouble {
   bool non_finite = false;          ///< the finite-element solutions were not finite
   bool friction_unsettled = false;  ///< the frictional problem did not settle
   bool normals_unsettled = false;   ///< deformed contact: the normals did not settle
+  bool beyond_reach = false;        ///< the contact problem would not fit in memory
 };
 
 /// How the reference's outer loop ended.
@@ -31,7 +32,8 @@ enum class OuterEnd {
 /// A step's result before its solution is written in (DESIGN §5): scene, solver `fem`, rule
 /// `active_set`, and the status, criterion and message of how the outer loop ended — converged
 /// when it settled; when the problem had no answer, diverged (non-finite finite-element solutions),
-/// max_iterations (friction did not settle) or unresolvable (an overlap nothing can move).
+/// max_iterations (friction did not settle), beyond_reach (it would not fit in memory) or
+/// unresolvable (an overlap nothing can move).
 Result reference_outcome(const std::string& scene, OuterEnd end, const ReferenceTrouble& trouble,
                          int max_outer_iterations);
 

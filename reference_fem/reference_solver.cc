@@ -10,13 +10,12 @@
 #include <iostream>
 #include <map>
 #include <set>
-#include <sstream>
 
 #include "ambiguous_sides.h"
 #include "carry_over.h"
-#include "input_error.h"
 #include "line_force_extrapolation.h"
 #include "load_path_solve.h"
+#include "memory_reach.h"
 #include "nonnegative_active_set.h"
 #include "process_sums.h"
 #include "reference_solver_class.h"
@@ -43,7 +42,8 @@ ReferenceSolver::ReferenceSolver(const Scene& scene, const ReferenceOptions& opt
                     : LineQuadrature::slices(scene.contact.slices)),
       grid_u_(fibres_.size(),
               std::vector<Eigen::Vector3d>(detector_.grid().size(), Eigen::Vector3d::Zero())),
-      mu_(scene.contact.friction) {
+      mu_(scene.contact.friction),
+      within_reach_(memory_within_reach(comm_)) {
   owned_.assign(fibres_.size(), 0);
   for (std::size_t f = rank_; f < fibres_.size(); f += processes_) owned_[f] = 1;
   const int samples = scene.output.samples;
@@ -73,6 +73,11 @@ Result ReferenceSolver::run() {
   for (; outer <= options_.max_outer_iterations; ++outer) {
     make_grid();
     setup_system();
+    if (trouble_.beyond_reach) {
+      for (Contact& c : contacts_) c.force = 0.0;
+      end = OuterEnd::no_answer;
+      break;
+    }
     assemble_system();
     solve(outer > 1 ? Start::last_answer : Start::frictionless);
     if (detector_.geometry().deformed() && trouble_.why.empty()) follow_the_deformed_fibres();
@@ -131,6 +136,8 @@ void ReferenceSolver::make_grid() {
   const bool owns = std::any_of(owned_.begin(), owned_.end(), [](char o) { return o != 0; });
   MeshOptions mesh = mesh_options();
   mesh.fibres = owned_;
+  // Beyond reach, only the fibres under the scene's loads are solved: no node at the stations.
+  if (trouble_.beyond_reach) mesh.contact_stations.assign(fibres_.size(), {});
   {
     dealii::TimerOutput::Scope gmsh(timer_, "make_grid: Gmsh");
     if (owns) write_mesh(scene_, mesh, mesh_file_);
@@ -388,9 +395,7 @@ void ReferenceSolver::displacements_at_contacts(std::vector<Eigen::Vector3d>& u_
   }
 }
 
-// Every fibre's contact stations (sorted, each once) and each contact's stations on A and B. The
-// influence matrices are dense per fibre and every process holds all of them: what would not fit
-// in 4 GiB is refused here rather than failing in the middle of the assembly.
+// Every fibre's contact stations (sorted, each once) and each contact's stations on A and B.
 void ReferenceSolver::collect_stations() {
   stations_.assign(fibres_.size(), {});
   for (const Contact& c : contacts_) {
@@ -408,20 +413,6 @@ void ReferenceSolver::collect_stations() {
     offset_[f + 1] = offset_[f] + list.size();
     g_offset_[f + 1] = g_offset_[f] + list.size() * list.size();
   }
-  constexpr double kMaxInfluenceBytes = 4.0 * (1 << 30);
-  const double bytes = 8.0 * static_cast<double>(g_offset_.back());
-  if (bytes > kMaxInfluenceBytes) {
-    std::size_t widest = 0;
-    for (std::size_t f = 0; f < fibres_.size(); ++f)
-      if (stations_[f].size() > stations_[widest].size()) widest = f;
-    std::ostringstream out;
-    out.precision(3);
-    out << "the reference's dense influence matrices would take " << bytes / (1 << 30)
-        << " GiB (fibre " << fibres_[widest].id << " alone has " << stations_[widest].size()
-        << " contact stations), above its limit of 4 GiB: give the reference fewer slices "
-        << "(fibrecheck fem --slices) or a coarser continuous line contact";
-    throw InputError(scene_.source, "contact.slices", out.str());
-  }
   station_a_.resize(contacts_.size());
   station_b_.resize(contacts_.size());
   for (std::size_t k = 0; k < contacts_.size(); ++k) {
@@ -429,6 +420,31 @@ void ReferenceSolver::collect_stations() {
     station_b_[k] =
         contacts_[k].kind == ContactKind::wall ? -1 : station(contacts_[k].b, contacts_[k].s_b);
   }
+  check_memory_reach();
+}
+
+// The influence matrices are dense per fibre and every process holds all of them and W: a contact
+// problem that would not fit in the memory the machine has is not assembled. The step ends
+// beyond reach (the fibres under the scene's loads alone, with what it would need), rather than
+// exhausting the machine in the middle of the assembly.
+void ReferenceSolver::check_memory_reach() {
+  std::vector<std::size_t> count(fibres_.size(), 0), sides(fibres_.size(), 0), frictional;
+  if (mu_ > 0.0) frictional.assign(fibres_.size(), 0);
+  for (const Contact& c : contacts_)
+    for (const int f : {c.a, c.kind == ContactKind::wall ? -1 : c.b}) {
+      if (f < 0) continue;
+      ++sides[f];
+      if (mu_ > 0.0) frictional[f] += 1 + c.tangents;
+    }
+  std::size_t widest = 0;
+  for (std::size_t f = 0; f < fibres_.size(); ++f) {
+    count[f] = stations_[f].size();
+    if (count[f] > count[widest]) widest = f;
+  }
+  const MemoryNeed need = contact_problem_memory(count, sides, frictional);
+  if (need.total() <= within_reach_) return;
+  trouble_.why = beyond_reach_message(need, within_reach_, fibres_[widest].id, count[widest]);
+  trouble_.beyond_reach = true;
 }
 
 MeshOptions ReferenceSolver::mesh_options() const {

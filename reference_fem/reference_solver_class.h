@@ -86,6 +86,7 @@ class ReferenceSolver {
 
   // Meshing and detection (reference_solver.cc).
   void collect_stations();
+  void check_memory_reach();
   MeshOptions mesh_options() const;
   void deform();
   void displacements_at_contacts(std::vector<Eigen::Vector3d>& u_a,
@@ -163,6 +164,7 @@ class ReferenceSolver {
   ReferenceTrouble trouble_;  ///< why the problem could not be solved, if it could not
 
   double mu_;
+  double within_reach_;  ///< bytes each process may take (memory_reach.h)
   SlipOrigins origins_, end_state_;
   /// The frictional problem of the candidates (μ > 0): W with the tangential blocks and q.
   FrictionalProblem friction_problem_;

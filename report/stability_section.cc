@@ -34,7 +34,8 @@ StabilityTables stability_tables() {
       "Stability on the extreme catalogue (scenes/extreme/): each scene run once by each solver "
       "as it stands (the iterative solver with the scene's rule, the default where it names "
       "none; the reference on the scene's slices), its status against the one the scene "
-      "expects (refused: beyond the solver's reach, said as bad input), and the worst relative "
+      "expects (beyond_reach: it would need more memory than the machine has), and the worst "
+      "relative "
       "error against the scene's closed-form forces and deflections.";
   t.catalogue.header = {"Scene",      "Solver",   "Expected", "Status",
                         "Iterations", "Time (s)", "Error",    "As expected"};

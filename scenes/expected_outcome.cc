@@ -21,13 +21,13 @@ std::map<std::string, std::string> per_solver(ObjectReader& parent, const std::s
   for (const char* solver : kSolvers) {
     if (!r.has(solver)) continue;
     const std::string value = r.string(solver);
-    if (statuses && value != "refused") {
+    if (statuses) {
       try {
         parse_status(value, source);
       } catch (const InputError&) {
         r.fail(r.field(solver), "\"" + value +
                                     "\" is none of converged, max_iterations, diverged, "
-                                    "unresolvable, refused");
+                                    "unresolvable, beyond_reach");
       }
     }
     values[solver] = value;

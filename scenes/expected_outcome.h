@@ -25,9 +25,9 @@ namespace fibrecheck {
 ///                      "relative_tolerance": 1e-6}]
 ///   }
 ///
-/// A status is one of the result's statuses, or `refused`: the solver declines the scene as
-/// beyond its reach (exit code 2 with a message) — the reference's dense compliance matrix at
-/// 100 000 slices, say. A pair's force is the sum of `total_force` over its contacts (0 when it
+/// A status is one of the result's statuses: `beyond_reach` where the solver would need more
+/// memory than a machine has (exit code 3 with what it would need) — the reference's dense
+/// influence matrices and compliance matrix at 100 000 slices, say. A pair's force is the sum of `total_force` over its contacts (0 when it
 /// has none); an expected force of 0 takes the tolerance in newtons. A deflection is read at the
 /// result's sample at `position`, which must be one.
 struct ExpectedOutcome {

@@ -29,7 +29,8 @@ constexpr std::pair<Status, const char*> kStatusNames[] = {
     {Status::converged, "converged"},
     {Status::max_iterations, "max_iterations"},
     {Status::diverged, "diverged"},
-    {Status::unresolvable, "unresolvable"}};
+    {Status::unresolvable, "unresolvable"},
+    {Status::beyond_reach, "beyond_reach"}};
 constexpr std::pair<Criterion, const char*> kCriterionNames[] = {
     {Criterion::contact, "contact"},
     {Criterion::energy, "energy"},
@@ -39,7 +40,8 @@ constexpr std::pair<Criterion, const char*> kCriterionNames[] = {
     {Criterion::growth, "growth"},
     {Criterion::oscillation, "oscillation"},
     {Criterion::non_finite, "non_finite"},
-    {Criterion::unresolvable, "unresolvable"}};
+    {Criterion::unresolvable, "unresolvable"},
+    {Criterion::memory, "memory"}};
 
 template <typename Enum, std::size_t N>
 const char* name_of(Enum value, const std::pair<Enum, const char*> (&names)[N]) {

@@ -62,7 +62,8 @@ enum class Status {
   converged,       ///< a stopping criterion of §4.3.6 (or the exact contact solve) was met
   max_iterations,  ///< the cap on iterations came first
   diverged,        ///< growth, oscillation or non-finite numbers
-  unresolvable     ///< an overlap where no force can act (both fibres pinned there)
+  unresolvable,    ///< an overlap where no force can act (both fibres pinned there)
+  beyond_reach     ///< the solver would need more memory than the machine has (the reference)
 };
 
 /// What ended the run.
@@ -75,7 +76,8 @@ enum class Criterion {
   growth,          ///< the residual grew without bound
   oscillation,     ///< no progress for a long stretch (c ≥ 2/λmax(W))
   non_finite,      ///< a non-finite force, displacement or energy
-  unresolvable     ///< see Status::unresolvable
+  unresolvable,    ///< see Status::unresolvable
+  memory           ///< see Status::beyond_reach
 };
 
 const char* to_string(Status status);

@@ -34,7 +34,7 @@ struct StiffnessPoint {
 struct CataloguePoint {
   std::string solver;  ///< "iterative" | "reference"
   std::string rule;
-  std::string status, expected_status;  ///< a status, or `refused`
+  std::string status, expected_status;  ///< a status, or `refused` (bad input)
   long iterations = 0;
   double time_s = 0;
   double error = NAN;    ///< worst relative error against the scene's closed forms

@@ -67,10 +67,13 @@ TEST(ExpectedOutcome, ReadingRejectsWhatItCannotJudge) {
         R"({"deflections": [{"fibre": "A", "position": 2, "displacement": [0, 0, 1]}]})",
         R"({"comment": "unknown keys are errors"})"})
     EXPECT_THROW(read_expected_outcome(json::parse(text), "scene.json"), InputError) << text;
-  // refused: beyond a solver's reach, said as bad input.
-  const ExpectedOutcome e =
-      read_expected_outcome(json::parse(R"({"status": {"reference": "refused"}})"), "scene.json");
-  EXPECT_EQ(expected_status(e, "reference"), "refused");
+  // A scene beyond a solver's reach is a status, not bad input.
+  EXPECT_THROW(read_expected_outcome(json::parse(R"({"status": {"reference": "refused"}})"),
+                                     "scene.json"),
+               InputError);
+  const ExpectedOutcome e = read_expected_outcome(
+      json::parse(R"({"status": {"reference": "beyond_reach"}})"), "scene.json");
+  EXPECT_EQ(expected_status(e, "reference"), "beyond_reach");
   // What is written reads back the same.
   const ExpectedOutcome full = read_expected_outcome(kExpected, "scene.json");
   EXPECT_EQ(to_json(full), kExpected);

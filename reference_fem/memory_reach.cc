@@ -1,0 +1,72 @@
+#include "memory_reach.h"
+
+#include <Eigen/SparseCore>
+#include <unistd.h>
+
+#include <algorithm>
+#include <fstream>
+#include <sstream>
+
+namespace fibrecheck {
+
+MemoryNeed contact_problem_memory(const std::vector<std::size_t>& stations,
+                                  const std::vector<std::size_t>& sides,
+                                  const std::vector<std::size_t>& frictional) {
+  constexpr double kTriplet = sizeof(Eigen::Triplet<double>);
+  constexpr double kEntry = sizeof(double) + sizeof(int);  // a compressed sparse entry
+  MemoryNeed need;
+  for (std::size_t f = 0; f < stations.size(); ++f) {
+    const double m = static_cast<double>(stations[f]);
+    const double c = static_cast<double>(sides[f]);
+    const double r = frictional.empty() ? 0.0 : static_cast<double>(frictional[f]);
+    need.influence += sizeof(double) * m * m;
+    need.compliance += (kTriplet + kEntry) * (c * c + r * r);
+  }
+  return need;
+}
+
+namespace {
+
+/// MemAvailable of /proc/meminfo (bytes), or 0 where there is none.
+double available_memory() {
+  std::ifstream meminfo("/proc/meminfo");
+  std::string key;
+  double kib = 0.0;
+  std::string unit;
+  while (meminfo >> key >> kib >> unit)
+    if (key == "MemAvailable:") return 1024.0 * kib;
+  return 0.0;
+}
+
+}  // namespace
+
+double memory_within_reach(MPI_Comm communicator) {
+  double machine = available_memory();
+  if (machine <= 0.0)
+    machine = static_cast<double>(sysconf(_SC_PHYS_PAGES)) * static_cast<double>(sysconf(_SC_PAGESIZE));
+  MPI_Comm node;
+  MPI_Comm_split_type(communicator, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &node);
+  int here = 1;
+  MPI_Comm_size(node, &here);
+  MPI_Comm_free(&node);
+  double mine = 0.9 * machine / std::max(here, 1), smallest = mine;
+  MPI_Allreduce(&mine, &smallest, 1, MPI_DOUBLE, MPI_MIN, communicator);
+  return smallest;
+}
+
+std::string beyond_reach_message(const MemoryNeed& need, double within_reach,
+                                 const std::string& widest_fibre, std::size_t widest_stations) {
+  constexpr double kGiB = 1 << 30;
+  std::ostringstream out;
+  out.precision(3);
+  out << "the reference's contact problem would need " << need.total() / kGiB
+      << " GiB on every process (dense influence matrices " << need.influence / kGiB
+      << " GiB, compliance matrix " << need.compliance / kGiB << " GiB; fibre " << widest_fibre
+      << " alone has " << widest_stations << " contact stations), more than the "
+      << within_reach / kGiB
+      << " GiB each process has on this machine: give the reference fewer slices "
+         "(fibrecheck fem --slices) or a coarser continuous line contact";
+  return out.str();
+}
+
+}  // namespace fibrecheck
