@@ -19,7 +19,7 @@ MemoryNeed contact_problem_memory(const std::vector<std::size_t>& stations,
     const double m = static_cast<double>(stations[f]);
     const double c = static_cast<double>(sides[f]);
     const double r = frictional.empty() ? 0.0 : static_cast<double>(frictional[f]);
-    need.influence += sizeof(double) * m * m;
+    need.influence += 2 * sizeof(double) * m * m;
     need.compliance += (kTriplet + kEntry) * (c * c + r * r);
   }
   return need;
@@ -52,6 +52,16 @@ double memory_within_reach(MPI_Comm communicator) {
   double mine = 0.9 * machine / std::max(here, 1), smallest = mine;
   MPI_Allreduce(&mine, &smallest, 1, MPI_DOUBLE, MPI_MIN, communicator);
   return smallest;
+}
+
+std::string memory_line(const MemoryNeed& need, double within_reach) {
+  constexpr double kGiB = 1 << 30;
+  std::ostringstream out;
+  out.precision(3);
+  out << "contact problem: " << need.total() / kGiB << " GiB on every process (influence matrices "
+      << need.influence / kGiB << ", compliance matrix " << need.compliance / kGiB << "), "
+      << within_reach / kGiB << " GiB within reach";
+  return out.str();
 }
 
 std::string beyond_reach_message(const MemoryNeed& need, double within_reach,

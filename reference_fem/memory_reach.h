@@ -20,7 +20,8 @@ struct MemoryNeed {
 
 /// The need of `stations` contact stations and `sides` contacts acting on each fibre, and with
 /// friction (`frictional` not empty) their reaction components there (1 + tangents each): G in
-/// doubles, and for W and its frictional form the triplets of their assembly and the matrices.
+/// doubles twice (as the finite elements give it and packed for the sums over the processes), and
+/// for W and its frictional form the triplets of their assembly and the matrices.
 MemoryNeed contact_problem_memory(const std::vector<std::size_t>& stations,
                                   const std::vector<std::size_t>& sides,
                                   const std::vector<std::size_t>& frictional);
@@ -30,6 +31,9 @@ MemoryNeed contact_problem_memory(const std::vector<std::size_t>& stations,
 /// less a tenth kept for everything else; the smallest over the processes, so that every process
 /// decides alike.
 double memory_within_reach(MPI_Comm communicator);
+
+/// A progress line: what the contact problem will take against what there is.
+std::string memory_line(const MemoryNeed& need, double within_reach);
 
 /// The message of a scene beyond reach: what it would need against what there is.
 std::string beyond_reach_message(const MemoryNeed& need, double within_reach,

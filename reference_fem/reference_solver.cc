@@ -442,6 +442,8 @@ void ReferenceSolver::check_memory_reach() {
     if (count[f] > count[widest]) widest = f;
   }
   const MemoryNeed need = contact_problem_memory(count, sides, frictional);
+  if (options_.progress && need.total() > (1 << 30))
+    options_.progress(memory_line(need, within_reach_));
   if (need.total() <= within_reach_) return;
   trouble_.why = beyond_reach_message(need, within_reach_, fibres_[widest].id, count[widest]);
   trouble_.beyond_reach = true;

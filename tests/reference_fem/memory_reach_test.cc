@@ -13,7 +13,7 @@ TEST(MemoryReach, CountsTheSquareOfTheContactsOnEveryFibre) {
   // Two fibres, 3 and 5 stations, 4 and 6 contacts on them; with friction 12 and 6 components.
   const double entry = sizeof(Eigen::Triplet<double>) + sizeof(double) + sizeof(int);
   const MemoryNeed frictionless = contact_problem_memory({3, 5}, {4, 6}, {});
-  EXPECT_DOUBLE_EQ(frictionless.influence, 8.0 * (9 + 25));
+  EXPECT_DOUBLE_EQ(frictionless.influence, 2 * 8.0 * (9 + 25));
   EXPECT_DOUBLE_EQ(frictionless.compliance, entry * (16 + 36));
   const MemoryNeed frictional = contact_problem_memory({3, 5}, {4, 6}, {12, 6});
   EXPECT_DOUBLE_EQ(frictional.influence, frictionless.influence);
