@@ -51,12 +51,9 @@ Table scale_table(const ScaleStudy& study) {
 std::string exponents_sentence(const ScaleStudy& study) {
   std::string exponents;
   for (const ScaleExponent& e : study.exponents) {
-    int processes = 1;
-    for (const ScalePoint& p : study.points)
-      if (p.solver == e.solver && p.method == e.method) processes = p.processes;
     std::ostringstream line;
     line.precision(2);
-    line << std::fixed << series_name(e.solver, e.method, processes) << " " << e.time;
+    line << std::fixed << series_name(e.solver, e.method, e.processes) << " " << e.time;
     exponents += (exponents.empty() ? "" : "; ") + line.str();
   }
   return exponents.empty() ? "" : " Time grows as fibres^a with a: " + exponents + ".";

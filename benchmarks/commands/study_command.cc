@@ -158,8 +158,9 @@ void print(const ScaleStudy& study) {
                 p.solver.c_str(), p.method.c_str(), p.processes, p.status.c_str(), p.candidates,
                 p.active, p.iterations, p.time_s, p.ms_per_iteration(), p.peak_memory_mb);
   for (const ScaleExponent& e : study.exponents)
-    std::printf("  %s %s: time ~ fibres^%.2f, peak memory ~ fibres^%.2f (%d sizes)\n",
-                e.solver.c_str(), e.method.c_str(), e.time, e.memory, e.sizes);
+    std::printf("  %s %s, %d process%s: time ~ fibres^%.2f, peak memory ~ fibres^%.2f (%d sizes)\n",
+                e.solver.c_str(), e.method.c_str(), e.processes, e.processes == 1 ? "" : "es",
+                e.time, e.memory, e.sizes);
 }
 
 /// The scale study runs `fibrecheck solve`, `fibrecheck fem` (under mpiexec) and

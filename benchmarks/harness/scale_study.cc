@@ -6,6 +6,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
+#include <tuple>
 
 #include "atomic_file.h"
 #include "csv_file.h"
@@ -128,7 +129,12 @@ class ScaleRuns {
     }
     if (has(o_.fibres, n))
       for (const std::string& rule : o_.rules) iterative(n, rule);
-    if (has(o_.reference_fibres, n)) reference(n);
+    // The reference on one process and on `processes`: what the processes share out.
+    if (has(o_.reference_fibres, n)) {
+      const int processes = o_.mpiexec.empty() ? 1 : o_.processes;
+      if (processes > 1) reference(n, 1);
+      reference(n, processes);
+    }
     if (has(o_.peer_fibres, n)) peer(n);
   }
 
@@ -150,19 +156,23 @@ class ScaleRuns {
     keep(key, p);
   }
 
-  /// The reference on `processes` (under mpiexec), exporting its contact problem for the peer.
-  void reference(int n) {
-    const std::string key = name_ + "/fem/" + std::to_string(o_.processes);
-    if (!start(key, "reference on " + std::to_string(o_.processes) + " processes")) return;
+  /// The reference on `processes` (under mpiexec when more than one), exporting its contact
+  /// problem for the peer from the run on the most processes.
+  void reference(int n, int processes) {
+    const std::string key = name_ + "/fem/" + std::to_string(processes);
+    if (!start(key, "reference on " + std::to_string(processes) + " process" +
+                        (processes == 1 ? "" : "es")))
+      return;
     ScalePoint p = point(n, "fem", "active_set");
-    p.processes = o_.mpiexec.empty() ? 1 : o_.processes;
+    p.processes = processes;
     const std::string out = result_file("fem");
     std::vector<std::string> command;
     if (p.processes > 1) command = {o_.mpiexec, "-np", std::to_string(p.processes)};
     for (const std::string& a :
          {o_.program, std::string("fem"), scene_, std::string("--out"), out, std::string("-q")})
       command.push_back(a);
-    if (has(o_.peer_fibres, n)) {
+    const bool last = processes == (o_.mpiexec.empty() ? 1 : o_.processes);
+    if (has(o_.peer_fibres, n) && last) {
       command.push_back("--export-contact-problem");
       command.push_back(problem_);
     }
@@ -252,23 +262,26 @@ double slope(const std::vector<double>& x, const std::vector<double>& y) {
   return d != 0.0 ? (n * sxy - sx * sy) / d : NAN;
 }
 
-/// Exponents over the converged sizes of each solver and method.
+/// Exponents over the converged sizes of each solver, method and process count.
 std::vector<ScaleExponent> exponents_of(const std::vector<ScalePoint>& points) {
-  std::vector<std::pair<std::string, std::string>> series;
+  std::vector<std::tuple<std::string, std::string, int>> series;
   for (const ScalePoint& p : points)
-    if (std::find(series.begin(), series.end(), std::make_pair(p.solver, p.method)) == series.end())
-      series.emplace_back(p.solver, p.method);
+    if (std::find(series.begin(), series.end(), std::make_tuple(p.solver, p.method, p.processes)) ==
+        series.end())
+      series.emplace_back(p.solver, p.method, p.processes);
   std::vector<ScaleExponent> exponents;
-  for (const auto& [solver, method] : series) {
+  for (const auto& [solver, method, processes] : series) {
     std::vector<double> x, t, m;
     for (const ScalePoint& p : points)
-      if (p.solver == solver && p.method == method && p.status == "converged" && p.time_s > 0.0) {
+      if (p.solver == solver && p.method == method && p.processes == processes &&
+          p.status == "converged" && p.time_s > 0.0) {
         x.push_back(std::log(static_cast<double>(p.fibres)));
         t.push_back(std::log(p.time_s));
         m.push_back(std::log(std::max(p.peak_memory_mb, 1e-3)));
       }
     if (x.size() < 2) continue;
-    exponents.push_back({solver, method, static_cast<int>(x.size()), slope(x, t), slope(x, m)});
+    exponents.push_back(
+        {solver, method, processes, static_cast<int>(x.size()), slope(x, t), slope(x, m)});
   }
   return exponents;
 }

@@ -44,6 +44,7 @@ void from_json(const json& j, ScalePoint& p) {
 json to_json(const ScaleExponent& e) {
   return {{"solver", e.solver},
           {"method", e.method},
+          {"processes", e.processes},
           {"sizes", e.sizes},
           {"time", number_or_null(e.time)},
           {"memory", number_or_null(e.memory)}};
@@ -52,6 +53,7 @@ json to_json(const ScaleExponent& e) {
 void from_json(const json& j, ScaleExponent& e) {
   e.solver = j.at("solver");
   e.method = j.at("method");
+  e.processes = j.value("processes", 1);
   e.sizes = j.at("sizes");
   e.time = number_at(j, "time");
   e.memory = number_at(j, "memory");

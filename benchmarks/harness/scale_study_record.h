@@ -25,10 +25,11 @@ struct ScalePoint {
   double ms_per_iteration() const { return iterations > 0 ? 1e3 * time_s / iterations : 0.0; }
 };
 
-/// Time (and memory) ∝ fibres^exponent for one solver and method, fitted by least squares on
-/// log–log over its converged sizes (two at least).
+/// Time (and memory) ∝ fibres^exponent for one solver, method and process count, fitted by least
+/// squares on log–log over its converged sizes (two at least).
 struct ScaleExponent {
   std::string solver, method;
+  int processes = 1;
   int sizes = 0;
   double time = 0.0, memory = 0.0;
 };

@@ -152,7 +152,7 @@ TEST(StudyRecords, TheScaleStudyKeepsItsFieldNames) {
   p.fibres = 7, p.slices = 10, p.solver = "iterative", p.method = "accelerated";
   p.status = "converged", p.iterations = 40, p.time_s = 0.002;
   s.points = {p};
-  s.exponents.push_back({"iterative", "accelerated", 2, 1.2, NAN});
+  s.exponents.push_back({"iterative", "accelerated", 1, 2, 1.2, NAN});
   const nlohmann::json j = to_json(s);
   EXPECT_TRUE(is_scale_study(j));
   EXPECT_EQ(keys(j), (Keys{"study", "slices", "seed", "points", "exponents"}));
@@ -160,7 +160,8 @@ TEST(StudyRecords, TheScaleStudyKeepsItsFieldNames) {
             (Keys{"fibres", "slices", "solver", "method", "processes", "status", "candidates",
                   "active", "iterations", "unknowns", "time_s", "process_time_s",
                   "ms_per_iteration", "peak_memory_mb", "agreement"}));
-  EXPECT_EQ(keys(j["exponents"][0]), (Keys{"solver", "method", "sizes", "time", "memory"}));
+  EXPECT_EQ(keys(j["exponents"][0]),
+            (Keys{"solver", "method", "processes", "sizes", "time", "memory"}));
   const ScaleStudy back = j.get<ScaleStudy>();
   EXPECT_EQ(back.points.at(0).ms_per_iteration(), p.ms_per_iteration());
   EXPECT_TRUE(std::isnan(back.exponents.at(0).memory));
