@@ -4,6 +4,7 @@
 #include <thread>
 
 #include "blas_threads.h"
+#include "machine_processes.h"
 #include "reference_solver.h"
 
 namespace fibrecheck {
@@ -13,11 +14,7 @@ namespace fibrecheck {
 // that share a machine (MPI's shared-memory split) divide its cores among them; a BLAS already
 // using fewer threads, or one process alone, is left as it is.
 void share_cores_with_blas(MPI_Comm communicator) {
-  MPI_Comm node;
-  MPI_Comm_split_type(communicator, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &node);
-  int here = 1;
-  MPI_Comm_size(node, &here);
-  MPI_Comm_free(&node);
+  const int here = processes_on_this_machine(communicator);
   if (here <= 1) return;
   const int cores = std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
   const int share = std::max(1, cores / here);

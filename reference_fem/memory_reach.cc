@@ -7,6 +7,8 @@
 #include <fstream>
 #include <sstream>
 
+#include "machine_processes.h"
+
 namespace fibrecheck {
 
 MemoryNeed contact_problem_memory(const std::vector<std::size_t>& stations,
@@ -44,12 +46,8 @@ double memory_within_reach(MPI_Comm communicator) {
   double machine = available_memory();
   if (machine <= 0.0)
     machine = static_cast<double>(sysconf(_SC_PHYS_PAGES)) * static_cast<double>(sysconf(_SC_PAGESIZE));
-  MPI_Comm node;
-  MPI_Comm_split_type(communicator, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &node);
-  int here = 1;
-  MPI_Comm_size(node, &here);
-  MPI_Comm_free(&node);
-  double mine = 0.9 * machine / std::max(here, 1), smallest = mine;
+  const int here = std::max(processes_on_this_machine(communicator), 1);
+  double mine = 0.9 * machine / here, smallest = mine;
   MPI_Allreduce(&mine, &smallest, 1, MPI_DOUBLE, MPI_MIN, communicator);
   return smallest;
 }
