@@ -1,8 +1,8 @@
 #include "memory_reach.h"
 
-#include <Eigen/SparseCore>
 #include <unistd.h>
 
+#include <Eigen/SparseCore>
 #include <algorithm>
 #include <fstream>
 #include <sstream>
@@ -45,7 +45,8 @@ double available_memory() {
 double memory_within_reach(MPI_Comm communicator) {
   double machine = available_memory();
   if (machine <= 0.0)
-    machine = static_cast<double>(sysconf(_SC_PHYS_PAGES)) * static_cast<double>(sysconf(_SC_PAGESIZE));
+    machine =
+        static_cast<double>(sysconf(_SC_PHYS_PAGES)) * static_cast<double>(sysconf(_SC_PAGESIZE));
   const int here = std::max(processes_on_this_machine(communicator), 1);
   double mine = 0.9 * machine / here, smallest = mine;
   MPI_Allreduce(&mine, &smallest, 1, MPI_DOUBLE, MPI_MIN, communicator);

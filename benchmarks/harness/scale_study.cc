@@ -131,9 +131,8 @@ class ScaleRuns {
       for (const std::string& rule : o_.rules) iterative(n, rule);
     // The reference on one process and on `processes`: what the processes share out.
     if (has(o_.reference_fibres, n)) {
-      const int processes = o_.mpiexec.empty() ? 1 : o_.processes;
-      if (processes > 1) reference(n, 1);
-      reference(n, processes);
+      if (most_processes() > 1) reference(n, 1);
+      reference(n, most_processes());
     }
     if (has(o_.peer_fibres, n)) peer(n);
   }
@@ -171,8 +170,7 @@ class ScaleRuns {
     for (const std::string& a :
          {o_.program, std::string("fem"), scene_, std::string("--out"), out, std::string("-q")})
       command.push_back(a);
-    const bool last = processes == (o_.mpiexec.empty() ? 1 : o_.processes);
-    if (has(o_.peer_fibres, n) && last) {
+    if (has(o_.peer_fibres, n) && processes == most_processes()) {
       command.push_back("--export-contact-problem");
       command.push_back(problem_);
     }
@@ -204,6 +202,9 @@ class ScaleRuns {
       keep(key + (k == 0 ? "" : "/" + p.method), p);
     }
   }
+
+  /// The reference's largest process count: `processes` under mpiexec, else one.
+  int most_processes() const { return o_.mpiexec.empty() ? 1 : o_.processes; }
 
   ScalePoint point(int n, const std::string& solver, const std::string& method) const {
     ScalePoint p;

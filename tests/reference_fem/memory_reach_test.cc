@@ -2,9 +2,10 @@
 
 #include "memory_reach.h"
 
-#include <Eigen/SparseCore>
 #include <gtest/gtest.h>
 #include <unistd.h>
+
+#include <Eigen/SparseCore>
 
 namespace fibrecheck {
 namespace {
