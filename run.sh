@@ -45,8 +45,8 @@ fi
 
 # The main job: every scene through the iterative solver (a summary table), then the default suite
 # of the harness — compare on every committed scene, the slice study, the tolerance study, the
-# stability study, the compaction study and the scale study — and the report. Studies keep their points: an
-# interrupted run resumes.
+# stability study, the compaction study, the friction study and the scale study — and the report.
+# Studies keep their points: an interrupted run resumes.
 out=build/main
 mkdir -p "$out" build/results
 step() { echo; echo "== $*"; }
@@ -90,6 +90,9 @@ step "compaction study: the seed's compaction test case, generated tows of 19 an
 ./build/fibrecheck study compaction scenes/compaction_test.json "$out/scenes/tow_19_compaction.json" \
   "$out/scenes/tow_100_compaction.json" --steps 6 --final-compaction 0.7 --sections 10 \
   --frictional-reference-fibres 19 --out "$out/study/compaction"
+step "friction study: the seed's friction rule against Coulomb friction, tows of 19 and 100 fibres over mu and F"
+./build/fibrecheck study friction --fibres 19,100 --mu 0.1,0.2,0.4 --compactions 0.9,0.8,0.7 \
+  --out "$out/study/friction" -q
 step "scale study: generated tows of 100 to 3000 fibres; the reference up to 1000 on two processes; Siconos at 100"
 ./build/fibrecheck study scale --fibres 100,300,1000,3000 --rules accelerated \
   --reference-fibres 100,300,1000 --peer-fibres 100 --out "$out/study/scale" -q

@@ -85,6 +85,8 @@ bool read_data_file(const fs::path& file, ReportData& data) {
     // Its pictures read the result files it kept, named relative to its folder.
     for (CompactionStudyScene& s : study_entries<CompactionStudyScene>(file))
       data.compaction_studies.push_back({file.parent_path().string(), std::move(s)});
+  } else if (name == "friction_study.json") {
+    append(data.friction_study, study_entries<FrictionPoint>(file));
   } else if (name == "scale_study.json") {
     const std::string what = "a study written by fibrecheck study scale";
     data.scale_studies.push_back(read_records(file, what, [&](const json& j) {

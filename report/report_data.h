@@ -6,6 +6,7 @@
 
 #include "compaction_study_record.h"
 #include "comparison_record.h"
+#include "friction_study_record.h"
 #include "result.h"
 #include "scale_study_record.h"
 #include "scene.h"
@@ -41,13 +42,14 @@ struct ReportData {
   std::vector<StabilityStudyScene> stability_studies;     ///< stability_study.json entries
   std::vector<StoredCompactionStudy> compaction_studies;  ///< compaction_study.json entries
   std::vector<ScaleStudy> scale_studies;                  ///< scale_study.json objects
+  std::vector<FrictionPoint> friction_study;              ///< friction_study.json entries
   std::vector<std::string> sources;                       ///< the files read
 };
 
 /// Reads every compare.json, slice_study.json, tolerance_study.json, stability_study.json,
-/// compaction_study.json and scale_study.json below `folders`, in the order of their paths.
-/// Throws InputError naming a folder that does not exist or a file that is not the harness's
-/// (malformed, or a record without a field the harness writes).
+/// compaction_study.json, scale_study.json and friction_study.json below `folders`, in the order of
+/// their paths. Throws InputError naming a folder that does not exist or a file that is not the
+/// harness's (malformed, or a record without a field the harness writes).
 ReportData read_report_data(const std::vector<std::string>& folders);
 
 }  // namespace fibrecheck

@@ -3,6 +3,7 @@
 #include "compaction_section.h"
 #include "comparison_section.h"
 #include "estimate_section.h"
+#include "friction_section.h"
 #include "report_page.h"
 #include "scale_section.h"
 #include "slice_section.h"
@@ -19,6 +20,7 @@ ReportSummary write_report(const ReportData& data, const std::string& folder) {
   write_estimate_section(page, data.comparisons, data.tolerance_studies);
   write_stability_section(page, data.stability_studies);
   write_compaction_section(page, data.compaction_studies);
+  write_friction_section(page, data.friction_study);
   write_scale_section(page, data.scale_studies);
   return page.finish(data.sources);
 }

@@ -21,7 +21,7 @@ namespace fibrecheck {
 namespace {
 
 const std::string kStudyNames =
-    "the studies are slices, tolerance, stability, compaction and scale";
+    "the studies are slices, tolerance, stability, compaction, scale and friction";
 
 using SceneStudy = std::function<void(const std::vector<Scene>&, const Solvers&)>;
 
@@ -195,13 +195,32 @@ int run_scale(const StudyArguments& args) {
   return kExitConverged;
 }
 
+void print(const std::vector<FrictionPoint>& points) {
+  std::printf("%7s %5s %6s %4s %-8s %-15s %-13s %10s %8s %10s %10s\n", "fibres", "F", "Vf", "mu",
+              "friction", "status", "criterion", "iterations", "time_s", "stick_mm", "p_MPa");
+  for (const FrictionPoint& p : points)
+    std::printf("%7d %5.2f %6.3f %4.2f %-8s %-15s %-13s %10ld %8.2f %10.2e %10.3e\n", p.fibres,
+                p.compaction, p.fibre_volume_fraction, p.mu, p.model.c_str(), p.status.c_str(),
+                p.criterion.c_str(), p.iterations, p.time_s, p.stick_residual, p.pressure);
+}
+
+/// The friction study generates its tows and needs the iterative solver alone.
+int run_friction(const StudyArguments& args) {
+  FrictionStudyOptions o = args.friction;
+  o.quiet = args.quiet;
+  const std::vector<FrictionPoint> points =
+      run_friction_study(o, make_solvers(true).iterative, args.out);
+  if (!args.quiet) {
+    print(points);
+    std::cout << "study written to " << args.out << "\n";
+  }
+  return kExitConverged;
+}
+
 const std::map<std::string, std::function<int(const StudyArguments&)>>& studies() {
   static const std::map<std::string, std::function<int(const StudyArguments&)>> all = {
-      {"slices", run_slices},
-      {"tolerance", run_tolerance},
-      {"stability", run_stability},
-      {"compaction", run_compaction},
-      {"scale", run_scale}};
+      {"slices", run_slices},         {"tolerance", run_tolerance}, {"stability", run_stability},
+      {"compaction", run_compaction}, {"scale", run_scale},         {"friction", run_friction}};
   return all;
 }
 
@@ -331,6 +350,37 @@ void add_scale(CLI::App& study, StudyArguments& args) {
   scale->callback([&args, scale] { args.study = scale->get_name(); });
 }
 
+void add_friction(CLI::App& study, StudyArguments& args) {
+  FrictionStudyOptions& o = args.friction;
+  CLI::App* friction = study.add_subcommand(
+      "friction",
+      "Where the seed's friction rule converges and where it stalls, against Coulomb friction: "
+      "generated tows compacted in one step, over mu and the compaction factor");
+  friction->add_option("--out", args.out, "Folder of the study's data")->required();
+  friction->add_option("--fibres", o.fibres, "Tow sizes (default 19,100)")
+      ->delimiter(',')
+      ->check(CLI::Range(1, 1000000));
+  friction->add_option("--mu", o.mu, "Friction coefficients (default 0.1,0.2,0.4)")
+      ->delimiter(',')
+      ->check(CLI::PositiveNumber);
+  friction
+      ->add_option("--compactions", o.compactions,
+                   "Compaction factors F of the cross-section (default 0.9,0.8,0.7)")
+      ->delimiter(',')
+      ->check(CLI::Range(1e-6, 1.0));
+  friction->add_option("--slices", o.slices, "Slices of the generated tows (default 100)")
+      ->check(CLI::Range(1, 100000));
+  friction->add_option("--seed", o.seed, "Seed of the generated tows (default 2)");
+  friction
+      ->add_option("--volume-fraction", o.volume_fraction,
+                   "Fibre volume fraction before compaction (default 0.35)")
+      ->check(CLI::Range(1e-3, 0.9));
+  friction->add_option("--max-iterations", o.max_iterations, "Cap on each run (default 100000)")
+      ->check(CLI::PositiveNumber);
+  friction->add_flag("--quiet,-q", args.quiet, "Print nothing but errors");
+  friction->callback([&args, friction] { args.study = friction->get_name(); });
+}
+
 }  // namespace
 
 int run_study(const StudyArguments& args) {
@@ -357,6 +407,7 @@ CLI::App* add_study_command(CLI::App& app, StudyArguments& args) {
   add_stability(*study, args);
   add_compaction(*study, args);
   add_scale(*study, args);
+  add_friction(*study, args);
   // A word that names no study is kept, not refused as a stray argument, so that the refusal can
   // name it. Set after the studies are added: they keep refusing what they do not know.
   study->allow_extras();

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "compaction_study.h"
+#include "friction_study.h"
 #include "scale_study.h"
 #include "slice_study.h"
 #include "stability_study.h"
@@ -13,7 +14,7 @@
 namespace fibrecheck {
 
 /// `fibrecheck study slices|tolerance|stability|compaction SCENE... --out DIR [options]`, or
-/// `fibrecheck study scale --out DIR [--fibres N,...] [options]` on generated tows: one study
+/// `fibrecheck study scale|friction --out DIR [--fibres N,...] [options]` on generated tows: one study
 /// on the scenes, each point written to DIR when done (a study run again computes only what is
 /// missing), then its CSV and JSON. Each study has its own options, with its defaults.
 struct StudyArguments {
@@ -27,6 +28,7 @@ struct StudyArguments {
   CompactionStudyOptions compaction;
   /// Its programs are found when it runs; "0" alone in a list of sizes means none.
   ScaleStudyOptions scale;
+  FrictionStudyOptions friction;
 };
 
 /// Registers `study` and its sub-commands.

@@ -1,11 +1,11 @@
 // The report from the harness's own records: a small real run of every study — a comparison of
 // two crossing fibres, a slice study of the parallel fibres, a tolerance and a stability study of
 // the crossing (and one scene of the extreme catalogue), a compaction study of a generated 7-fibre
-// tow with friction, and a scale study of a 7-fibre tow run as processes of the fibrecheck
-// program — read back by the report. The iterative solver stands in for the reference, so that
-// this builds without the finite-element stack. A field the harness writes under a name the report
-// does not read makes the report refuse the data; the tables carry the numbers the studies
-// returned.
+// tow with friction, a friction study of a 7-fibre tow, and a scale study of a 7-fibre tow run as
+// processes of the fibrecheck program — read back by the report. The iterative solver stands in for
+// the reference, so that this builds without the finite-element stack. A field the harness writes
+// under a name the report does not read makes the report refuse the data; the tables carry the
+// numbers the studies returned.
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -18,13 +18,14 @@
 #include "atomic_file.h"
 #include "compaction_study.h"
 #include "comparison.h"
+#include "friction_study.h"
 #include "input_error.h"
 #include "iterative_solver.h"
 #include "report_data.h"
-#include "slurp.h"
 #include "report_writer.h"
 #include "scale_study_record.h"
 #include "slice_study.h"
+#include "slurp.h"
 #include "stability_study.h"
 #include "tables.h"
 #include "tolerance_study.h"
@@ -66,6 +67,7 @@ struct HarnessRun {
   std::vector<SliceStudyScene> slices;
   std::vector<ToleranceStudyScene> tolerance;
   std::vector<CompactionStudyScene> compaction;
+  std::vector<FrictionPoint> friction;
   ScaleStudy scale;
 };
 
@@ -103,6 +105,10 @@ HarnessRun run_harness(const fs::path& folder) {
   compaction.quiet = true;
   run.compaction = run_compaction_study({generate_tow(tow)}, compaction, solvers,
                                         (folder / "study" / "compaction").string());
+  FrictionStudyOptions friction;
+  friction.fibres = {7}, friction.mu = {0.2}, friction.compactions = {0.9};
+  friction.slices = 10, friction.max_iterations = 20000, friction.quiet = true;
+  run.friction = run_friction_study(friction, iterative, (folder / "study" / "friction").string());
   const fs::path scale = folder / "study" / "scale";
   const std::string command = std::string("'") + FIBRECHECK_BINARY +
                               "' study scale --fibres 7 --slices 10 --rules accelerated "
@@ -174,20 +180,21 @@ TEST_F(ReportFromHarness, EveryStudyIsReadAndReported) {
   EXPECT_EQ(data.tolerance_studies.size(), 1u);
   EXPECT_EQ(data.stability_studies.size(), 2u);
   EXPECT_EQ(data.compaction_studies.size(), 1u);
+  EXPECT_EQ(data.friction_study.size(), 2u);
   ASSERT_EQ(data.scale_studies.size(), 1u);
   const fs::path out = *folder_ / "report";
   const ReportSummary summary = write_report(data, out.string());
   // Comparison, slices, speed-up, tolerance outcomes, effectivity, step sweep, stiffness,
-  // catalogue, compaction fits and agreement, scale.
-  EXPECT_EQ(summary.tables, 11);
+  // catalogue, compaction fits and agreement, the friction rules, scale.
+  EXPECT_EQ(summary.tables, 12);
   EXPECT_TRUE(summary.missing.empty()) << summary.missing.front();
   const std::string md = slurp(out / "report.md");
-  for (const char* section : {"## Accuracy on each scene",
-                              "## Accuracy against the number of "
-                              "slices",
-                              "## Accuracy against run time", "## Error estimates",
-                              "## Stability of the force update",
-                              "## Compaction", "## Scale"})
+  for (const char* section :
+       {"## Accuracy on each scene",
+        "## Accuracy against the number of "
+        "slices",
+        "## Accuracy against run time", "## Error estimates", "## Stability of the force update",
+        "## Compaction", "## The seed's friction rule", "## Scale"})
     EXPECT_NE(md.find(section), std::string::npos) << section;
   // The figures of the compaction study, its kept state at step 3 included (at step 1 no contact
   // force crosses the mid-length section: a picture of circles only is left out), and of the
@@ -195,9 +202,9 @@ TEST_F(ReportFromHarness, EveryStudyIsReadAndReported) {
   const std::string tow = file_name_slug(run_->compaction.at(0).scene);
   EXPECT_FALSE(fs::exists(out / "figures" / ("compaction_section_" + tow + "_step1.png")));
   for (const std::string& figure : std::vector<std::string>{
-           "compaction_" + tow, "compaction_energy_" + tow,
-           "compaction_section_" + tow + "_step3", "scale_time", "slices_parallel_fibres",
-           "error_vs_time_two_fibres_crossing", "stability_two_fibres_crossing"})
+           "compaction_" + tow, "compaction_energy_" + tow, "compaction_section_" + tow + "_step3",
+           "scale_time", "slices_parallel_fibres", "error_vs_time_two_fibres_crossing",
+           "stability_two_fibres_crossing", "friction_seed_rule_7"})
     EXPECT_TRUE(fs::exists(out / "figures" / (figure + ".png"))) << figure;
 }
 
@@ -224,6 +231,18 @@ TEST_F(ReportFromHarness, TheTablesHoldWhatTheStudiesReturned) {
   }
   EXPECT_NE(md.find("| iterative, μ = 0.2 (Coulomb) | "), std::string::npos);
   EXPECT_NE(md.find("| iterative, μ = 0.2 (seed rule) | "), std::string::npos);
+  // The friction study's row: both runs of the tow side by side.
+  ASSERT_EQ(run_->friction.size(), 2u);
+  const FrictionPoint& seed = run_->friction.at(0);
+  const FrictionPoint& coulomb = run_->friction.at(1);
+  auto outcome = [](const FrictionPoint& p) {
+    return p.status == "converged" ? p.status : p.status + " (" + p.criterion + ")";
+  };
+  EXPECT_NE(
+      md.find("| 7 | 0.900 | " + fixed3(seed.fibre_volume_fraction) + " | 0.200 | " +
+              outcome(seed) + " | " + std::to_string(seed.iterations) + " | " + outcome(coulomb) +
+              " | " + std::to_string(coulomb.iterations) + " | " + sci(seed.stick_residual) + " |"),
+      std::string::npos);
   ASSERT_EQ(run_->scale.points.size(), 1u);
   const ScalePoint& s = run_->scale.points.at(0);
   EXPECT_NE(md.find("| 7 | iterative, " + s.method + " | " + s.status + " | " +
