@@ -31,7 +31,15 @@ std::map<PairKey, RunPair> pairs_of(const std::vector<FrictionPoint>& points) {
 
 std::string outcome(const FrictionPoint* p) {
   if (!p) return "–";
-  return p->status == "converged" ? p->status : p->status + " (" + p->criterion + ")";
+  return p->criterion == p->status || p->status == "converged"
+             ? p->status
+             : p->status + " (" + p->criterion + ")";
+}
+
+/// How far the seed rule's answer is from Coulomb's law, where it converged (a diverged run's
+/// best state says nothing about the rule).
+std::string seed_slip(const FrictionPoint* p) {
+  return p && p->status == "converged" ? sci(p->stick_residual) : "–";
 }
 
 std::string iterations(const FrictionPoint* p) {
@@ -52,9 +60,9 @@ Table friction_table(const std::map<PairKey, RunPair>& pairs) {
   t.caption =
       "Generated tows compacted in one step to F, each with friction coefficient μ, solved by "
       "the iterative solver with the seed's friction rule (Eqs. 4.29–4.33) and with Coulomb "
-      "friction: how each run ended, its iterations, how far the seed rule's answer is from "
-      "Coulomb's law (the largest slip at a contact below its cone, mm), and the seed rule's wall "
-      "pressure over Coulomb's where both converged.";
+      "friction: how each run ended, its iterations, how far the seed rule's converged answer is "
+      "from Coulomb's law (the largest slip at a contact below its cone, mm), and the seed rule's "
+      "wall pressure over Coulomb's where both converged.";
   t.header = {"Fibres",
               "F",
               "Vf",
@@ -63,15 +71,14 @@ Table friction_table(const std::map<PairKey, RunPair>& pairs) {
               "Iter.",
               "Coulomb",
               "Iter.",
-              "Seed: stick slip (mm)",
+              "Seed: slip below the cone (mm)",
               "Pressure ratio"};
   for (const auto& [key, pair] : pairs) {
     const FrictionPoint& any = pair.seed ? *pair.seed : *pair.coulomb;
     t.rows.push_back({std::to_string(any.fibres), fixed3(any.compaction),
                       fixed3(any.fibre_volume_fraction), fixed3(any.mu), outcome(pair.seed),
                       iterations(pair.seed), outcome(pair.coulomb), iterations(pair.coulomb),
-                      pair.seed ? sci(pair.seed->stick_residual) : "–",
-                      fixed3(pressure_ratio(pair))});
+                      seed_slip(pair.seed), fixed3(pressure_ratio(pair))});
   }
   return t;
 }
