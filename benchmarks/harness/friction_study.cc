@@ -1,7 +1,6 @@
 #include "friction_study.h"
 
 #include <filesystem>
-#include <sstream>
 
 #include "atomic_file.h"
 #include "csv_file.h"
@@ -14,12 +13,6 @@ namespace fibrecheck {
 namespace {
 
 using nlohmann::json;
-
-std::string text(double x) {
-  std::ostringstream out;
-  out << x;
-  return out.str();
-}
 
 /// The tow of `fibres` compacted in one step to F, its contacts with μ and the friction model.
 Scene frictional_tow(const FrictionStudyOptions& options, int fibres, double compaction, double mu,
@@ -34,7 +27,8 @@ Scene frictional_tow(const FrictionStudyOptions& options, int fibres, double com
   Scene scene = generate_tow(tow);
   scene.contact.friction_model = model;
   scene.solver.max_iterations = options.max_iterations;
-  scene.name = "tow_" + std::to_string(fibres) + "_F" + text(compaction) + "_mu" + text(mu);
+  scene.name =
+      "tow_" + std::to_string(fibres) + "_F" + key_number(compaction) + "_mu" + key_number(mu);
   return scene;
 }
 

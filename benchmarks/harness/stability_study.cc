@@ -3,7 +3,6 @@
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <optional>
-#include <sstream>
 
 #include "atomic_file.h"
 #include "csv_file.h"
@@ -17,16 +16,10 @@ namespace {
 
 using nlohmann::json;
 
-std::string text(double x) {
-  std::ostringstream out;
-  out << x;
-  return out.str();
-}
-
 Scene stiffer(const Scene& scene, double ratio) {
   Scene s = scene;
   for (std::size_t i = 1; i < s.fibres.size(); i += 2) s.fibres[i].youngs_modulus *= ratio;
-  s.name = scene.name + " x" + text(ratio);
+  s.name = scene.name + " x" + key_number(ratio);
   return s;
 }
 
@@ -120,8 +113,8 @@ class StabilityRuns {
  private:
   /// The rule seed at c = f c_crit.
   StepPoint step(const Scene& scene, double f, double c_crit) {
-    return step_from_journal(
-        point(scene.name + "/c/" + text(f), scene.name + ", c = " + text(f) + " c_crit", [&] {
+    return step_from_journal(point(
+        scene.name + "/c/" + key_number(f), scene.name + ", c = " + key_number(f) + " c_crit", [&] {
           Scene s = scene;
           s.solver.rule = UpdateRule::seed;
           s.solver.c = f * c_crit;
@@ -142,7 +135,7 @@ class StabilityRuns {
       if (!reference) reference = solvers_.reference_slices(s);
       return *reference;
     };
-    const std::string base = scene.name + "/stiffness/" + text(ratio) + "/";
+    const std::string base = scene.name + "/stiffness/" + key_number(ratio) + "/";
     into.push_back(stiffness_from_journal(
         point(base + "reference", s.name + ", reference",
               [&] { return journal_line(measured(ratio, "reference", truth(), Errors{})); }),

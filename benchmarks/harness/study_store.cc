@@ -12,6 +12,12 @@
 
 namespace fibrecheck {
 
+std::string key_number(double x) {
+  std::ostringstream out;
+  out << x;
+  return out.str();
+}
+
 StudyStore::StudyStore(const std::string& folder, const std::string& study)
     : folder_(folder), path_((std::filesystem::path(folder) / (study + ".points.jsonl")).string()) {
   std::filesystem::create_directories(folder);

@@ -32,6 +32,9 @@ class StudyStore {
   bool broken_line_ = false;  ///< the file ends in a line cut short
 };
 
+/// A number as a point's key and its scene's name say it: as short as it reads ("0.9").
+std::string key_number(double x);
+
 /// "point i of N, elapsed, estimated remaining" on standard error, for long studies.
 class StudyProgress {
  public:
