@@ -14,9 +14,9 @@ namespace {
 
 using nlohmann::json;
 
-/// The tow of `fibres` compacted in one step to F, its contacts with μ and the friction model.
-Scene frictional_tow(const FrictionStudyOptions& options, int fibres, double compaction, double mu,
-                     FrictionModel model) {
+/// The tow of `fibres` compacted in one step to F, its contacts with μ.
+Scene frictional_tow(const FrictionStudyOptions& options, int fibres, double compaction,
+                     double mu) {
   TowOptions tow;
   tow.fibres = fibres;
   tow.slices = options.slices;
@@ -25,7 +25,6 @@ Scene frictional_tow(const FrictionStudyOptions& options, int fibres, double com
   tow.compaction = compaction;
   tow.friction = mu;
   Scene scene = generate_tow(tow);
-  scene.contact.friction_model = model;
   scene.solver.max_iterations = options.max_iterations;
   scene.name =
       "tow_" + std::to_string(fibres) + "_F" + key_number(compaction) + "_mu" + key_number(mu);
@@ -80,32 +79,51 @@ void write_friction_study(const std::vector<FrictionPoint>& points, const std::s
             rows);
 }
 
+/// One run of the study: a tow, its size, F and μ, and the friction model it is solved with.
+struct FrictionRun {
+  Scene scene;
+  int fibres;
+  double compaction, mu;
+};
+
+/// Every run, each tow generated once: options no tow can be made with are refused before the
+/// study writes anything.
+std::vector<FrictionRun> friction_runs(const FrictionStudyOptions& options) {
+  std::vector<FrictionRun> runs;
+  for (int fibres : options.fibres)
+    for (double compaction : options.compactions)
+      for (double mu : options.mu) {
+        const Scene tow = frictional_tow(options, fibres, compaction, mu);
+        for (FrictionModel model : {FrictionModel::seed, FrictionModel::coulomb}) {
+          runs.push_back({tow, fibres, compaction, mu});
+          runs.back().scene.contact.friction_model = model;
+        }
+      }
+  return runs;
+}
+
 }  // namespace
 
 std::vector<FrictionPoint> run_friction_study(const FrictionStudyOptions& options,
                                               const std::function<Result(const Scene&)>& iterative,
                                               const std::string& folder) {
+  const std::vector<FrictionRun> runs = friction_runs(options);
   StudyStore store(folder, "friction_study");
-  StudyProgress progress("friction study",
-                         2 * options.fibres.size() * options.compactions.size() * options.mu.size(),
-                         options.quiet);
+  StudyProgress progress("friction study", runs.size(), options.quiet);
   std::vector<FrictionPoint> points;
-  std::size_t index = 0;
-  for (int fibres : options.fibres)
-    for (double compaction : options.compactions)
-      for (double mu : options.mu)
-        for (FrictionModel model : {FrictionModel::seed, FrictionModel::coulomb}) {
-          const Scene scene = frictional_tow(options, fibres, compaction, mu, model);
-          const std::string key = scene.name + "/" + to_string(model);
-          if (store.has(key)) {
-            progress.skip();
-          } else {
-            progress.start(index, scene.name + ", " + to_string(model) + " friction");
-            store.add(key, to_json(measured(scene, fibres, compaction, mu, iterative(scene))));
-          }
-          ++index;
-          points.push_back(store.get(key).get<FrictionPoint>());
-        }
+  for (std::size_t i = 0; i < runs.size(); ++i) {
+    const FrictionRun& run = runs[i];
+    const std::string model = to_string(run.scene.contact.friction_model);
+    const std::string key = run.scene.name + "/" + model;
+    if (store.has(key)) {
+      progress.skip();
+    } else {
+      progress.start(i, run.scene.name + ", " + model + " friction");
+      store.add(key, to_json(measured(run.scene, run.fibres, run.compaction, run.mu,
+                                      iterative(run.scene))));
+    }
+    points.push_back(store.get(key).get<FrictionPoint>());
+  }
   write_friction_study(points, folder);
   return points;
 }

@@ -333,6 +333,18 @@ TEST_F(Cli, ScaleStudyMeasuresEveryRunAndResumes) {
 }
 #endif
 
+// The friction study's options are checked before it writes anything: a volume fraction no tow
+// can be packed at names its field and leaves no folder.
+TEST_F(Cli, FrictionStudyRefusesATowItCannotMakeAndWritesNothing) {
+  const Outcome bad =
+      run("study friction --fibres 7 --volume-fraction 0.85 -q --out " + dir_ + "bad");
+  EXPECT_EQ(bad.code, 2);
+  EXPECT_NE(bad.err.find("volume_fraction"), std::string::npos) << bad.err;
+  EXPECT_FALSE(fs::exists(dir_ + "bad"));
+  EXPECT_EQ(run("study friction --fibres 0 --out " + dir_ + "none").code, 2);
+  EXPECT_FALSE(fs::exists(dir_ + "none"));
+}
+
 // Each kind of bad input: one message naming what is wrong, exit code 2, nothing written.
 // Damaged scene files through the program itself (the scene reader sees thousands in-process,
 // see scene_mutation_test.cc): every one ends with exit code 0, 2 or 3 and a message, and bad
