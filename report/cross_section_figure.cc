@@ -143,10 +143,6 @@ std::string force_scale(const SectionForces& forces, double radius) {
   return gp.str();
 }
 
-std::string or_nan(const std::string& rows, const std::string& nan_row) {
-  return rows.empty() ? nan_row : rows;
-}
-
 }  // namespace
 
 void draw_cross_section(ReportPage& page, const std::string& name, const std::string& what,
@@ -185,9 +181,9 @@ void draw_cross_section(ReportPage& page, const std::string& name, const std::st
           "1:2:3:4 with vectors nohead lw 3 lc rgb '#e0a000', @DATA2@ using 1:2:3:4 with vectors "
           "nohead lw 3 lc rgb '#e00000', @DATA3@ using 1:2 with lines lw 2 lc rgb '#606060'",
       {{circles.rows},
-       {or_nan(forces.normal, "nan nan nan nan\n")},
-       {or_nan(forces.friction, "nan nan nan nan\n")},
-       {or_nan(walls, "nan nan\n")}});
+       {rows_or_nan(forces.normal, 4)},
+       {rows_or_nan(forces.friction, 4)},
+       {rows_or_nan(walls)}});
 }
 
 }  // namespace fibrecheck

@@ -5,6 +5,7 @@
 #include <map>
 #include <set>
 #include <sstream>
+#include <tuple>
 
 #include "csv_file.h"
 
@@ -83,10 +84,6 @@ Table friction_table(const std::map<PairKey, RunPair>& pairs) {
   return t;
 }
 
-std::string or_nan(const std::ostringstream& rows) {
-  return rows.str().empty() ? "nan nan\n" : rows.str();
-}
-
 /// The seed rule's outcome over the fibre volume fraction and μ on one tow size.
 void outcome_figure(ReportPage& page, int fibres, const std::vector<FrictionPoint>& points) {
   std::ostringstream converged, diverged, other;
@@ -97,17 +94,18 @@ void outcome_figure(ReportPage& page, int fibres, const std::vector<FrictionPoin
                                                         : other;
     into << p.fibre_volume_fraction << " " << p.mu << "\n";
   }
-  page.figure("friction_seed_rule_" + std::to_string(fibres),
-              "Where the seed's friction rule converges on the " + std::to_string(fibres) +
-                  "-fibre tow: each run by its fibre volume fraction after compaction and its "
-                  "friction coefficient μ.",
-              "set xlabel 'fibre volume fraction V_f'\nset ylabel 'friction coefficient {/Symbol "
-              "m}'\nset offsets graph 0.1, graph 0.1, graph 0.15, graph 0.15\nset key above "
-              "horizontal\nset grid\nplot @DATA0@ using 1:2 with points pt 7 ps 2.5 lc rgb "
-              "'#1a9850' title 'converged', @DATA1@ using 1:2 with points pt 2 ps 2.5 lw 3 lc rgb "
-              "'#d73027' title 'diverged', @DATA2@ using 1:2 with points pt 6 ps 2.5 lw 2 lc rgb "
-              "'#4575b4' title 'iteration cap'",
-              {{or_nan(converged)}, {or_nan(diverged)}, {or_nan(other)}});
+  page.figure(
+      "friction_seed_rule_" + std::to_string(fibres),
+      "Where the seed's friction rule converges on the " + std::to_string(fibres) +
+          "-fibre tow: each run by its fibre volume fraction after compaction and its "
+          "friction coefficient μ.",
+      "set xlabel 'fibre volume fraction V_f'\nset ylabel 'friction coefficient {/Symbol "
+      "m}'\nset offsets graph 0.1, graph 0.1, graph 0.15, graph 0.15\nset key above "
+      "horizontal\nset grid\nplot @DATA0@ using 1:2 with points pt 7 ps 2.5 lc rgb "
+      "'#1a9850' title 'converged', @DATA1@ using 1:2 with points pt 2 ps 2.5 lw 3 lc rgb "
+      "'#d73027' title 'diverged', @DATA2@ using 1:2 with points pt 6 ps 2.5 lw 2 lc rgb "
+      "'#4575b4' title 'iteration cap'",
+      {{rows_or_nan(converged.str())}, {rows_or_nan(diverged.str())}, {rows_or_nan(other.str())}});
 }
 
 // How often each model converged, and the densest tow on which the seed's rule still did.

@@ -79,4 +79,11 @@ bool Gnuplot::plot(const std::string& name, const std::string& body,
   return true;
 }
 
+std::string rows_or_nan(const std::string& rows, int columns) {
+  if (!rows.empty()) return rows;
+  std::string nan_row;
+  for (int c = 0; c < columns; ++c) nan_row += c == 0 ? "nan" : " nan";
+  return nan_row + "\n";
+}
+
 }  // namespace fibrecheck

@@ -33,4 +33,8 @@ class Gnuplot {
   bool available_ = false;
 };
 
+/// A series' rows, or one row of `columns` NaNs where it has none: gnuplot refuses to plot an
+/// empty data file, and a series with nothing in it is still named in the legend.
+std::string rows_or_nan(const std::string& rows, int columns = 2);
+
 }  // namespace fibrecheck

@@ -60,10 +60,6 @@ void stiffness_rows(Table& t, const StabilityStudyScene& s) {
                       p.method == "reference" ? "(truth)" : sci(p.errors.worst())});
 }
 
-std::string or_nan(const std::ostringstream& rows) {
-  return rows.str().empty() ? "nan nan\n" : rows.str();
-}
-
 /// Iterations against c / c_crit: converged, diverged (where detected) and capped runs.
 void step_figure(ReportPage& page, const StabilityStudyScene& s) {
   std::ostringstream converged, diverged, other;
@@ -73,19 +69,20 @@ void step_figure(ReportPage& page, const StabilityStudyScene& s) {
                                                         : other;
     into << p.fraction << " " << std::max(1L, p.iterations) << "\n";
   }
-  page.figure("stability_" + file_name_slug(s.scene),
-              "Iterations of the seed's rule on " + s.scene +
-                  " against c / c_crit: converged runs, and the iteration at which divergence "
-                  "was detected; c_crit = " +
-                  sci(s.c_crit) + " N/mm.",
-              "set logscale y\nset xlabel 'c / c_{crit}'\nset ylabel 'iterations'\nset format y "
-              "'10^{%L}'\nset xrange [0:*]\nset offsets 0, graph 0.05, graph 0.1, 0\nset key "
-              "top center\nset grid\nset arrow from 1, graph 0 to 1, graph 1 "
-              "nohead dt 2 lc rgb '#666666'\nplot @DATA0@ using 1:2 with linespoints pt 7 ps "
-              "1.5 lw 2 title 'converged', @DATA1@ using 1:2 with points pt 2 ps 2 lw 3 title "
-              "'diverged (iteration detected)', @DATA2@ using 1:2 with points pt 6 ps 2 title "
-              "'iteration cap'",
-              {{or_nan(converged)}, {or_nan(diverged)}, {or_nan(other)}});
+  page.figure(
+      "stability_" + file_name_slug(s.scene),
+      "Iterations of the seed's rule on " + s.scene +
+          " against c / c_crit: converged runs, and the iteration at which divergence "
+          "was detected; c_crit = " +
+          sci(s.c_crit) + " N/mm.",
+      "set logscale y\nset xlabel 'c / c_{crit}'\nset ylabel 'iterations'\nset format y "
+      "'10^{%L}'\nset xrange [0:*]\nset offsets 0, graph 0.05, graph 0.1, 0\nset key "
+      "top center\nset grid\nset arrow from 1, graph 0 to 1, graph 1 "
+      "nohead dt 2 lc rgb '#666666'\nplot @DATA0@ using 1:2 with linespoints pt 7 ps "
+      "1.5 lw 2 title 'converged', @DATA1@ using 1:2 with points pt 2 ps 2 lw 3 title "
+      "'diverged (iteration detected)', @DATA2@ using 1:2 with points pt 6 ps 2 title "
+      "'iteration cap'",
+      {{rows_or_nan(converged.str())}, {rows_or_nan(diverged.str())}, {rows_or_nan(other.str())}});
 }
 
 // Where rule seed stops converging: the smallest c/c_crit at which a run diverged, and the largest
@@ -114,10 +111,11 @@ std::optional<std::string> stability_finding(const std::vector<StabilityStudySce
 
 void write_stability_section(ReportPage& page, const std::vector<StabilityStudyScene>& studies) {
   if (studies.empty()) return;
-  page.section("Stability of the force update",
-               "The seed's update $P' = P + c\\,d$ (§4.3.2) is a projected Richardson iteration on "
-               "the contact compliance W; its step is c·D (c/n per slice, Eq. 4.28), stable for c "
-               "below $c_\\mathrm{crit} = 2/\\lambda_{\\max}(D^{1/2}WD^{1/2})$, which every run estimates.");
+  page.section(
+      "Stability of the force update",
+      "The seed's update $P' = P + c\\,d$ (§4.3.2) is a projected Richardson iteration on "
+      "the contact compliance W; its step is c·D (c/n per slice, Eq. 4.28), stable for c "
+      "below $c_\\mathrm{crit} = 2/\\lambda_{\\max}(D^{1/2}WD^{1/2})$, which every run estimates.");
   StabilityTables t = stability_tables();
   std::vector<std::vector<std::string>> rows;
   for (const StabilityStudyScene& s : studies) {
