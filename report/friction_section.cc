@@ -8,6 +8,7 @@
 #include <tuple>
 
 #include "csv_file.h"
+#include "gnuplot.h"
 
 namespace fibrecheck {
 
@@ -84,28 +85,43 @@ Table friction_table(const std::map<PairKey, RunPair>& pairs) {
   return t;
 }
 
-/// The seed rule's outcome over the fibre volume fraction and μ on one tow size.
+/// How each run on one tow size ended, by its fibre volume fraction and μ: the seed's rule
+/// (circles, drawn a little to the left) and Coulomb friction (triangles, to the right), coloured
+/// by status.
 void outcome_figure(ReportPage& page, int fibres, const std::vector<FrictionPoint>& points) {
-  std::ostringstream converged, diverged, other;
+  constexpr double kApart = 0.006;  // of Vf, between the two models' marks
+  std::ostringstream series[2][3];  // model (seed, Coulomb) × status (converged, diverged, cap)
   for (const FrictionPoint& p : points) {
-    if (p.fibres != fibres || p.model != "seed") continue;
-    std::ostringstream& into = p.status == "converged"  ? converged
-                               : p.status == "diverged" ? diverged
-                                                        : other;
-    into << p.fibre_volume_fraction << " " << p.mu << "\n";
+    if (p.fibres != fibres) continue;
+    const int model = p.model == "seed" ? 0 : 1;
+    const int status = p.status == "converged" ? 0 : p.status == "diverged" ? 1 : 2;
+    series[model][status] << p.fibre_volume_fraction + (model == 0 ? -kApart : kApart) << " "
+                          << p.mu << "\n";
   }
-  page.figure(
-      "friction_seed_rule_" + std::to_string(fibres),
-      "Where the seed's friction rule converges on the " + std::to_string(fibres) +
-          "-fibre tow: each run by its fibre volume fraction after compaction and its "
-          "friction coefficient μ.",
-      "set xlabel 'fibre volume fraction V_f'\nset ylabel 'friction coefficient {/Symbol "
-      "m}'\nset offsets graph 0.1, graph 0.1, graph 0.15, graph 0.15\nset key above "
-      "horizontal\nset grid\nplot @DATA0@ using 1:2 with points pt 7 ps 2.5 lc rgb "
-      "'#1a9850' title 'converged', @DATA1@ using 1:2 with points pt 2 ps 2.5 lw 3 lc rgb "
-      "'#d73027' title 'diverged', @DATA2@ using 1:2 with points pt 6 ps 2.5 lw 2 lc rgb "
-      "'#4575b4' title 'iteration cap'",
-      {{rows_or_nan(converged.str())}, {rows_or_nan(diverged.str())}, {rows_or_nan(other.str())}});
+  std::vector<Gnuplot::Series> data;
+  for (auto& model : series)
+    for (auto& status : model) data.push_back({rows_or_nan(status.str())});
+  std::ostringstream plot;
+  const char* colour[] = {"#1a9850", "#d73027", "#4575b4"};
+  const char* status[] = {"converged", "diverged", "iteration cap"};
+  const char* model[] = {"seed rule", "Coulomb"};
+  plot << "plot ";
+  for (int m = 0; m < 2; ++m)
+    for (int k = 0; k < 3; ++k)
+      plot << (m + k > 0 ? ", " : "") << "@DATA" << 3 * m + k << "@ using 1:2 with points pt "
+           << (m == 0 ? 7 : 9) << " ps 2.2 lc rgb '" << colour[k] << "' title '" << model[m] << ", "
+           << status[k] << "'";
+  page.figure("friction_seed_rule_" + std::to_string(fibres),
+              "How each run on the " + std::to_string(fibres) +
+                  "-fibre tow ended, by its fibre volume fraction after compaction and its "
+                  "friction coefficient μ: the seed's friction rule (circles, left of each "
+                  "fraction) and Coulomb friction (triangles, right); green converged, red "
+                  "diverged, blue stopped at the iteration cap.",
+              "set xlabel 'fibre volume fraction V_f'\nset ylabel 'friction coefficient "
+              "{/Symbol m}'\nset offsets graph 0.1, graph 0.1, graph 0.15, graph 0.15\nset key "
+              "above horizontal maxcols 3\nset grid\n" +
+                  plot.str(),
+              data);
 }
 
 // How often each model converged, and the densest tow on which the seed's rule still did.

@@ -7,9 +7,9 @@
 
 namespace fibrecheck {
 
-/// "The seed's friction rule": per tow size where the rule converged and where it stalled over μ
-/// and the fibre volume fraction (a figure), a table of both friction models' runs side by side,
-/// a key finding, and data/friction.csv.
+/// "The seed's friction rule": per tow size how each run of the seed's rule and of Coulomb
+/// friction ended over μ and the fibre volume fraction (a figure), a table of both friction models'
+/// runs side by side, a key finding, and data/friction.csv.
 void write_friction_section(ReportPage& page, const std::vector<FrictionPoint>& points);
 
 }  // namespace fibrecheck
