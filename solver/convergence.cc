@@ -46,7 +46,8 @@ DivergenceMonitor::Verdict DivergenceMonitor::observe(long iteration, double res
     best_iteration_ = iteration;
     return Verdict::fine;
   }
-  if (residual > 1e4 * reference_) return Verdict::growth;
+  const double growth = std::min(1e4 * reference_, std::max(extent_, 1e2 * reference_));
+  if (residual > growth) return Verdict::growth;
   if (residual < best_) {
     best_ = residual;
     best_iteration_ = iteration;

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <cmath>
 #include <deque>
 #include <vector>
 
@@ -35,9 +36,15 @@ class EnergyWindow {
 
 /// Watches the residual for instability: growth without bound or no progress at all for a long
 /// stretch (the update oscillating, as P' = P + c·d does for c ≥ 2/λmax(W)).
+///
+/// Growth is a residual 1e4 times the first one (or t), or one beyond `extent` (a gap or overlap
+/// longer than the scene's fibres, and a hundred times the first): fibres flying apart are found
+/// in new contact with every fibre they pass, and waiting for 1e4 times a large first overlap
+/// would let the candidate lists, and each iteration's cost, grow without bound first.
 class DivergenceMonitor {
  public:
-  explicit DivergenceMonitor(double tolerance) : tolerance_(tolerance) {}
+  explicit DivergenceMonitor(double tolerance, double extent = INFINITY)
+      : tolerance_(tolerance), extent_(extent) {}
   enum class Verdict { fine, growth, stalled };
   Verdict observe(long iteration, double residual);
   void reset() { reference_ = -1.0; }
@@ -47,7 +54,7 @@ class DivergenceMonitor {
   void set_unstable_step(bool unstable) { unstable_step_ = unstable; }
 
  private:
-  double tolerance_;
+  double tolerance_, extent_;
   bool unstable_step_ = false;
   double reference_ = -1.0;
   double best_ = 0.0;

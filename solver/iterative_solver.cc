@@ -13,8 +13,8 @@
 #include "compliance_operator.h"
 #include "contact_detection.h"
 #include "contact_results.h"
-#include "error_estimate.h"
 #include "convergence.h"
+#include "error_estimate.h"
 #include "fibre.h"
 #include "force_update.h"
 #include "iteration_state.h"
@@ -62,6 +62,12 @@ using Clock = std::chrono::steady_clock;
 
 double seconds_since(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+double longest_fibre(const std::vector<Fibre>& fibres) {
+  double longest = 0.0;
+  for (const Fibre& f : fibres) longest = std::max(longest, f.length);
+  return longest;
 }
 
 /// Whether the history keeps iteration `now`, the last one having been `before`: every iteration up
@@ -144,9 +150,9 @@ class IterativeSolver {
   /// normals next follow; a tenth, down to a hundredth after updates that made no progress.
   double follow_fraction_ = 0.1;
   static constexpr double kSmallestFollowFraction = 0.01;
-  double follow_below_ = INFINITY;   ///< the residual at which normals next follow the fibres
-  double follow_floor_ = 1.0;        ///< of t_d: the smallest residual an update waits for
-  double best_followed_ = INFINITY;  ///< the smallest residual an update left
+  double follow_below_ = INFINITY;    ///< the residual at which normals next follow the fibres
+  double follow_floor_ = 1.0;         ///< of t_d: the smallest residual an update waits for
+  double best_followed_ = INFINITY;   ///< the smallest residual an update left
   int updates_without_progress_ = 0;  ///< since an update last left a new smallest residual
   static constexpr int kPatientUpdates = 30;
   static constexpr int kMaxCrossingMoves = 5;
@@ -182,7 +188,7 @@ IterativeSolver::IterativeSolver(const Scene& scene, const SolverOptions& option
       superposition_(fibres_, scene),
       margin_(candidate_margin(fibres_, options.margin_factor)),
       detector_(fibres_, scene, margin_),
-      divergence_(options.overlap_tolerance),
+      divergence_(options.overlap_tolerance, longest_fibre(fibres_)),
       energy_window_(options.energy_window, options.energy_tolerance),
       mu_(scene.contact.friction),
       coulomb_(mu_ > 0.0 && scene.contact.friction_model == FrictionModel::coulomb),
@@ -328,8 +334,8 @@ std::optional<Termination> IterativeSolver::forces_accurate_enough() {
   if (!(wanted > 0.0)) return Termination{Status::converged, Criterion::contact, ""};
   working_set_.leave(state_);
   std::vector<Contact> answer;
-  estimate_ = estimate_iteration_error(scene_, fibres_, detector_.geometry(), state_.contacts,
-                                       &answer);
+  estimate_ =
+      estimate_iteration_error(scene_, fibres_, detector_.geometry(), state_.contacts, &answer);
   if (estimate_->force < wanted) return Termination{Status::converged, Criterion::force, ""};
   if (corrections_ < kMaxCorrections) {
     ++corrections_;

@@ -7,7 +7,8 @@
 //    never with t_U ≤ 0; an outlier keeps it unsettled until it has left the window, n_i + 1
 //    pushes later;
 //  - divergence monitor (tolerance t): the first residual r₀ sets the reference max(r₀, t);
-//    growth when a residual exceeds 1e4 times it; stalled when the best residual is more than
+//    growth when a residual exceeds 1e4 times it, or exceeds the scene's extent (its longest
+//    fibre) and 100 times it; stalled when the best residual is more than
 //    max(5000, iteration/5) iterations old; reset() starts again from the next residual.
 #include "convergence.h"
 
@@ -204,6 +205,30 @@ TEST(DivergenceMonitor, GrowthThresholdIsStrictAndStartsFromTheTolerance) {
     DivergenceMonitor monitor(1e-6);
     monitor.observe(1, 1.0);
     EXPECT_EQ(monitor.observe(2, INFINITY), Verdict::growth);
+  }
+}
+
+// Fibres flying apart: a residual beyond the scene's extent is growth long before 1e4 times a
+// large first overlap, but never within a hundred times the first residual.
+TEST(DivergenceMonitor, GrowthBeyondTheSceneIsGrowth) {
+  {
+    DivergenceMonitor monitor(1e-7, 1.0);  // fibres 1 mm long
+    monitor.observe(1, 6e-3);              // a compacted tow's first overlaps
+    EXPECT_EQ(monitor.observe(2, 0.6), Verdict::fine);
+    EXPECT_EQ(monitor.observe(3, 1.0), Verdict::fine);  // exactly the extent
+    EXPECT_EQ(monitor.observe(4, std::nextafter(1.0, INFINITY)), Verdict::growth);
+  }
+  {
+    DivergenceMonitor monitor(1e-7, 1.0);
+    monitor.observe(1, 0.05);  // a first residual the extent does not dwarf: 100 times it
+    EXPECT_EQ(monitor.observe(2, 5.0), Verdict::fine);
+    EXPECT_EQ(monitor.observe(3, 5.5), Verdict::growth);
+  }
+  {
+    DivergenceMonitor monitor(1e-7, 1e6);  // an extent beyond 1e4 times the start changes nothing
+    monitor.observe(1, 1e-3);
+    EXPECT_EQ(monitor.observe(2, 10.0), Verdict::fine);
+    EXPECT_EQ(monitor.observe(3, 10.5), Verdict::growth);
   }
 }
 
