@@ -40,14 +40,15 @@ bool EnergyWindow::push(double energy) {
 }
 
 DivergenceMonitor::Verdict DivergenceMonitor::observe(long iteration, double residual) {
+  if (first_ < 0.0) first_ = std::max(residual, tolerance_);
+  if (residual > std::max(extent_, 1e2 * first_)) return Verdict::growth;
   if (reference_ < 0.0) {
     reference_ = std::max(residual, tolerance_);
     best_ = residual;
     best_iteration_ = iteration;
     return Verdict::fine;
   }
-  const double growth = std::min(1e4 * reference_, std::max(extent_, 1e2 * reference_));
-  if (residual > growth) return Verdict::growth;
+  if (residual > 1e4 * reference_) return Verdict::growth;
   if (residual < best_) {
     best_ = residual;
     best_iteration_ = iteration;

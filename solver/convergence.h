@@ -37,16 +37,18 @@ class EnergyWindow {
 /// Watches the residual for instability: growth without bound or no progress at all for a long
 /// stretch (the update oscillating, as P' = P + c·d does for c ≥ 2/λmax(W)).
 ///
-/// Growth is a residual 1e4 times the first one (or t), or one beyond `extent` (a gap or overlap
-/// longer than the scene's fibres, and a hundred times the first): fibres flying apart are found
-/// in new contact with every fibre they pass, and waiting for 1e4 times a large first overlap
-/// would let the candidate lists, and each iteration's cost, grow without bound first.
+/// Growth is a residual 1e4 times the first one since the last reset (or t), or, whatever the
+/// resets, one beyond `extent` (a gap or overlap longer than the scene's fibres, and a hundred
+/// times the very first residual): fibres flying apart are found in new contact with every fibre
+/// they pass, and waiting for 1e4 times a large overlap would let the candidate lists, and each
+/// iteration's cost and memory, grow without bound first.
 class DivergenceMonitor {
  public:
   explicit DivergenceMonitor(double tolerance, double extent = INFINITY)
       : tolerance_(tolerance), extent_(extent) {}
   enum class Verdict { fine, growth, stalled };
   Verdict observe(long iteration, double residual);
+  /// Judges from the next residual on as from a new start (the extent keeps the very first).
   void reset() { reference_ = -1.0; }
   /// A step known to exceed its stable limit (c·λmax(W) > 2) is judged after 200 iterations
   /// without progress instead of max(5000, iteration/5): the linear part of the update then grows
@@ -57,6 +59,7 @@ class DivergenceMonitor {
   double tolerance_, extent_;
   bool unstable_step_ = false;
   double reference_ = -1.0;
+  double first_ = -1.0;  ///< the very first residual (or t), never reset
   double best_ = 0.0;
   long best_iteration_ = 0;
 };

@@ -449,9 +449,13 @@ std::optional<Termination> IterativeSolver::diverging(long iteration, double res
   const bool growth = verdict == DivergenceMonitor::Verdict::growth;
   std::ostringstream out;
   out.precision(3);
-  out << (growth ? "residual grew without bound" : "no progress: the update oscillates")
-      << " (c = " << step_ << " N/mm; the step is stable below about " << 2.0 / lambda_max_
-      << " N/mm, 2/lambda_max of the compliance it steps on)";
+  out << (growth ? "residual grew without bound" : "no progress: the update oscillates");
+  if (step_ * lambda_max_ > 2.0)
+    out << " (c = " << step_ << " N/mm; the step is stable below about " << 2.0 / lambda_max_
+        << " N/mm, 2/lambda_max of the compliance it steps on)";
+  else
+    out << " with its step within the stable limit (c = " << step_
+        << " N/mm, below 2/lambda_max = " << 2.0 / lambda_max_ << " N/mm)";
   return Termination{Status::diverged, growth ? Criterion::growth : Criterion::oscillation,
                      out.str()};
 }

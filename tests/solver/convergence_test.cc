@@ -8,8 +8,9 @@
 //    pushes later;
 //  - divergence monitor (tolerance t): the first residual r₀ sets the reference max(r₀, t);
 //    growth when a residual exceeds 1e4 times it, or exceeds the scene's extent (its longest
-//    fibre) and 100 times it; stalled when the best residual is more than
-//    max(5000, iteration/5) iterations old; reset() starts again from the next residual.
+//    fibre) and 100 times the very first residual, whatever the resets; stalled when the best
+//    residual is more than max(5000, iteration/5) iterations old; reset() starts again from the
+//    next residual.
 #include "convergence.h"
 
 #include <gtest/gtest.h>
@@ -229,6 +230,18 @@ TEST(DivergenceMonitor, GrowthBeyondTheSceneIsGrowth) {
     monitor.observe(1, 1e-3);
     EXPECT_EQ(monitor.observe(2, 10.0), Verdict::fine);
     EXPECT_EQ(monitor.observe(3, 10.5), Verdict::growth);
+  }
+  {
+    // A reset (each linearised problem of the deformed contact is judged on its own) starts the
+    // 1e4 afresh, not the extent: the residual cannot creep past the fibres' length in steps.
+    DivergenceMonitor monitor(1e-7, 1.0);
+    monitor.observe(1, 6e-3);
+    EXPECT_EQ(monitor.observe(2, 0.9), Verdict::fine);
+    monitor.reset();
+    EXPECT_EQ(monitor.observe(3, 0.95), Verdict::fine);
+    EXPECT_EQ(monitor.observe(4, 1.5), Verdict::growth);
+    monitor.reset();
+    EXPECT_EQ(monitor.observe(5, 1.5), Verdict::growth);
   }
 }
 
