@@ -35,8 +35,9 @@ long AcceleratedRule::update(IterationState& state, const UpdateContext& context
     next_friction_.resize(n);
     for (Eigen::Index k = 0; k < n; ++k)
       next_friction_[k] =
-          onto_coulomb_disk(state.friction_iterate[k] +
-                                beta * (state.friction_iterate[k] - state.previous_friction[k]),
+          onto_coulomb_disk(state.contacts[static_cast<std::size_t>(k)].tangential(
+                                state.friction_iterate[k] +
+                                beta * (state.friction_iterate[k] - state.previous_friction[k])),
                             state.bound[k]);
   }
   apply_forces(state, context, next_, next_friction_);

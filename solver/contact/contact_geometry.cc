@@ -117,7 +117,10 @@ void ContactGeometry::follow(Contact& c, const Eigen::Vector3d& u_a,
   if (distance < 0.5 * (fibres_[c.a].radius + fibres_[c.b].radius)) return;
   c.normal = difference / distance;
   set_tangents(c);
-  c.friction = c.tangential(c.friction);
+  const double size = c.friction.norm();
+  const Eigen::Vector3d turned = c.tangential(c.friction);
+  const double left = turned.norm();
+  c.friction = left > 1e-12 * size ? Eigen::Vector3d(size / left * turned) : turned;
 }
 
 void ContactGeometry::measure(std::vector<Contact>& contacts,

@@ -76,7 +76,9 @@ class ContactGeometry {
                bool follow_normals = true) const;
 
   /// Under the deformed model: the normal, tangents and friction of one contact follow its
-  /// displaced centres (nothing for walls, or where the centres nearly coincide).
+  /// displaced centres (nothing for walls, or where the centres nearly coincide). The friction
+  /// turns into the new tangent plane keeping its size: projected instead, a contact slipping on
+  /// the edge of its disk would fall inside it and count as sticking with all its slip.
   void follow(Contact& contact, const Eigen::Vector3d& u_a, const Eigen::Vector3d& u_b) const;
 
   const std::vector<Fibre>& fibres() const { return fibres_; }

@@ -269,5 +269,32 @@ TEST(ContactGeometry, MeasureSetsEveryOverlapFromItsOwnDisplacements) {
   EXPECT_NEAR(contacts[2].overlap, rA - (-0.019 - 0.011 + 0.04), kTight);
 }
 
+// The deformed model: B, a height h above A, pushed sideways by w turns the slice's normal to
+// (0, w, h)/√(w² + h²), and its tangent (the cross-section line ⊥ n) with it. A friction force on
+// the old tangent turns into the new one at its full size, the same way round: had it been
+// projected, a contact slipping at the edge of its Coulomb disk (|F| = μP) would fall inside by
+// the factor cos θ = h/√(w² + h²) and count as sticking with all the slip it has.
+TEST(ContactGeometry, FrictionTurnsWithTheTangentAtItsFullSize) {
+  const double h = 0.018, w = 0.01;
+  const auto fibres =
+      fibres_of({fibre("A", {0, 0, 0}, {1, 0, 0}, rA), fibre("B", {0, 0, h}, {1, 0, h}, rB)});
+  const ContactGeometry geometry(fibres, {}, V::UnitX(), ContactGeometryModel::deformed);
+  Contact c;
+  c.kind = ContactKind::line;
+  c.a = 0;
+  c.b = 1;
+  c.s_a = c.s_b = 0.5;
+  geometry.place_on_undeformed(c);
+  ASSERT_EQ(c.tangents, 1);
+  const V before = 3e-6 * c.tangent;
+  c.friction = before;
+  geometry.follow(c, V::Zero(), V(0, w, 0));
+  const V n = V(0, w, h).normalized();
+  EXPECT_NEAR((c.normal - n).norm(), 0.0, kTight);
+  EXPECT_NEAR(c.friction.dot(n), 0.0, 1e-15 * before.norm());
+  EXPECT_NEAR(c.friction.norm(), before.norm(), 1e-15 * before.norm());
+  EXPECT_NEAR(c.friction.dot(before) / before.squaredNorm(), h / std::hypot(w, h), 1e-14);
+}
+
 }  // namespace
 }  // namespace fibrecheck
