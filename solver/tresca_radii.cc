@@ -14,9 +14,10 @@ bool TrescaRadii::on_its_circle(const IterationState& state, std::size_t k) cons
 }
 
 // A slipping contact's radius must be μP and a sticking one's friction within μP: each violation
-// times the contact's compliance is the slip it could still cause. The answer must also satisfy
-// Coulomb's law as the result reports it (no slip where |F| < μP, slip along F where |F| = μP):
-// near the edge of the cone a radius a little short of μP lets a contact slide freely.
+// times the contact's compliance is the slip it could still cause. Stick and slip are judged
+// against the radii the inner problem had (a contact on its circle slips, whatever μP it came
+// short of by a hair); the radii are made μP exactly once they settle (see `update`), so that the
+// answer satisfies Coulomb's law as the result reports it.
 double TrescaRadii::violation(const IterationState& state, const std::vector<Fibre>& fibres) const {
   double change = 0.0;
   for (std::size_t k = 0; k < state.contacts.size(); ++k) {
@@ -28,8 +29,8 @@ double TrescaRadii::violation(const IterationState& state, const std::vector<Fib
                       (on_its_circle(state, k) ? std::fabs(g - bound) : std::max(0.0, size - g)) *
                           self_compliance(c, fibres));
   }
-  const FrictionFigures coulomb = friction_figures(state.contacts, mu_, FrictionModel::coulomb);
-  return std::max({change, coulomb.stick_residual, coulomb.slip_residual});
+  const FrictionFigures tresca = tresca_figures(state.contacts, state.bound);
+  return std::max({change, tresca.stick_residual, tresca.slip_residual});
 }
 
 // The plain map radius ← μP settles into cycles on compacted tows (a radius whose own normal force
@@ -71,7 +72,21 @@ bool TrescaRadii::update(IterationState& state, const std::vector<Fibre>& fibres
       F = state.bound[i] / slip * c.slip;
     if (state.friction_iterate.size() == state.contacts.size()) state.friction_iterate[k] = F;
   }
-  return !(settled && exact_before);
+  const bool done = settled && exact_before;
+  if (done) onto_coulomb_cone(state);
+  return !done;
+}
+
+void TrescaRadii::onto_coulomb_cone(IterationState& state) const {
+  for (std::size_t k = 0; k < state.contacts.size(); ++k) {
+    Contact& c = state.contacts[k];
+    const double size = c.friction.norm(), g = mu_ * c.force;
+    if (size > 0.0 && (on_its_circle(state, k) || size > g)) c.friction *= g / size;
+    state.bound[static_cast<Eigen::Index>(k)] = g;
+    if (state.friction_iterate.size() == state.contacts.size())
+      state.friction_iterate[k] = c.friction;
+  }
+  state.forces_gathered = false;
 }
 
 }  // namespace fibrecheck

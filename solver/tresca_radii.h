@@ -24,6 +24,11 @@ class TrescaRadii {
 
   long updates() const { return updates_; }
 
+  /// The radii made μ times the contacts' current normal forces: every contact on its circle
+  /// slips with |F| = μP, and none exceeds μP. Done once the radii settle (each friction then
+  /// moves by less than the tolerance allows), and after normal forces were set from outside.
+  void onto_coulomb_cone(IterationState& state) const;
+
  private:
   /// How far Coulomb's law is from holding, as the slip the violations could still cause (mm).
   double violation(const IterationState& state, const std::vector<Fibre>& fibres) const;

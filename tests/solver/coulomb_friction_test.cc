@@ -4,6 +4,7 @@
 
 #include "friction_ground_truths.h"
 #include "iterative_solver.h"
+#include "tow_generator.h"
 
 namespace fibrecheck {
 namespace {
@@ -54,6 +55,47 @@ TEST(CoulombFriction, UnloadingLeavesTheHysteresisWidthTwoMuN) {
 
 TEST(CoulombFriction, TheOrderOfLoadsMatters) {
   testing::check_path_dependence(solve, kTolerance);
+}
+
+// A tow compacted with friction in twelve steps, from first wall contact to Vf ≈ 0.59, in both
+// contact geometries: every step converges and its answer satisfies Coulomb's law as the result
+// reports it — slips at sticking contacts and slips against the friction of slipping ones below
+// t_d, no friction beyond μP — and the contact criterion. Under the deformed geometry this needs
+// the friction to turn with its tangent at full size, and the Tresca radii to be judged against
+// the disks the inner problem had: otherwise contacts slipping on their circle are taken for
+// sticking ones with all their slip, and the run ends without progress.
+TEST(CoulombFriction, CompactedTowConvergesEveryStepInBothGeometries) {
+  TowOptions tow;
+  tow.fibres = 19;
+  tow.slices = 20;
+  tow.seed = 2;
+  tow.volume_fraction = 0.35;
+  tow.steps = 12;
+  tow.first_compaction = 0.95;
+  tow.compaction = 0.7;
+  tow.friction = 0.2;
+  for (ContactGeometryModel geometry :
+       {ContactGeometryModel::deformed, ContactGeometryModel::linearised}) {
+    SCOPED_TRACE(to_string(geometry));
+    Scene s = generate_tow(tow);
+    s.contact.geometry = geometry;
+    const Result r = solve(s);
+    ASSERT_EQ(r.status, Status::converged) << r.message;
+    ASSERT_EQ(r.steps.size(), 12u);
+    for (const StepResult& step : r.steps) EXPECT_EQ(step.status, Status::converged);
+    const double t = s.overlap_tolerance();
+    EXPECT_LT(r.max_overlap, t);
+    EXPECT_LT(r.gap_force_residual, t);
+    ASSERT_TRUE(r.friction.has_value());
+    EXPECT_LT(r.friction->stick_residual, t);
+    EXPECT_LT(r.friction->slip_residual, t);
+    double largest = 0.0;
+    for (const ContactResult& c : r.contacts) largest = std::max(largest, c.normal_force);
+    ASSERT_GT(largest, 0.0);
+    EXPECT_GT(r.friction->slipping, 0);
+    EXPECT_GT(r.friction->sticking, 0);
+    EXPECT_LE(r.friction->cone_residual, 1e-12 * tow.friction * largest);
+  }
 }
 
 // The seed's rule (§4.3.4, Eqs. 4.29–4.33): the previous resultant split on the deformed centres'
