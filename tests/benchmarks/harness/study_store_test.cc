@@ -12,9 +12,10 @@
 namespace fibrecheck {
 namespace {
 
+// One folder per test: ctest runs the tests of this file as separate processes, side by side.
 std::string folder() {
-  const std::string f = ::testing::TempDir() + "study_store/";
-  return f;
+  const std::string test = ::testing::UnitTest::GetInstance()->current_test_info()->name();
+  return ::testing::TempDir() + "study_store_" + test + "/";
 }
 
 TEST(StudyStore, AnInterruptedStudyComputesOnlyTheRest) {
