@@ -43,7 +43,8 @@ DivergenceMonitor::Verdict DivergenceMonitor::observe(long iteration, double res
   if (first_ < 0.0) first_ = std::max(residual, tolerance_);
   if (residual > std::max(extent_, 1e2 * first_)) return Verdict::growth;
   if (reference_ < 0.0) {
-    reference_ = std::max(residual, tolerance_);
+    const double scene = std::isfinite(extent_) ? kReferenceOfExtent * extent_ : 0.0;
+    reference_ = std::max({residual, tolerance_, scene});
     best_ = residual;
     best_iteration_ = iteration;
     return Verdict::fine;

@@ -37,7 +37,9 @@ class EnergyWindow {
 /// Watches the residual for instability: growth without bound or no progress at all for a long
 /// stretch (the update oscillating, as P' = P + c·d does for c ≥ 2/λmax(W)).
 ///
-/// Growth is a residual 1e4 times the first one since the last reset (or t), or, whatever the
+/// Growth is a residual 1e4 times the first one since the last reset (or t, or 1e-8 of the
+/// scene's extent: a step that starts just touching under a t_d of 1e-11 mm may well push its
+/// overlaps to 1e-6 mm on the way), or, whatever the
 /// resets, one beyond `extent` (a gap or overlap longer than the scene's fibres, and a hundred
 /// times the very first residual): fibres flying apart are found in new contact with every fibre
 /// they pass, and waiting for 1e4 times a large overlap would let the candidate lists, and each
@@ -56,6 +58,7 @@ class DivergenceMonitor {
   void set_unstable_step(bool unstable) { unstable_step_ = unstable; }
 
  private:
+  static constexpr double kReferenceOfExtent = 1e-8;
   double tolerance_, extent_;
   bool unstable_step_ = false;
   double reference_ = -1.0;

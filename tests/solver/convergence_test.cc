@@ -226,7 +226,7 @@ TEST(DivergenceMonitor, GrowthBeyondTheSceneIsGrowth) {
     EXPECT_EQ(monitor.observe(3, 5.5), Verdict::growth);
   }
   {
-    DivergenceMonitor monitor(1e-7, 1e6);  // an extent beyond 1e4 times the start changes nothing
+    DivergenceMonitor monitor(1e-7, 1e4);  // an extent beyond 1e4 times the start changes nothing
     monitor.observe(1, 1e-3);
     EXPECT_EQ(monitor.observe(2, 10.0), Verdict::fine);
     EXPECT_EQ(monitor.observe(3, 10.5), Verdict::growth);
@@ -243,6 +243,20 @@ TEST(DivergenceMonitor, GrowthBeyondTheSceneIsGrowth) {
     monitor.reset();
     EXPECT_EQ(monitor.observe(5, 1.5), Verdict::growth);
   }
+}
+
+TEST(DivergenceMonitor, ATightToleranceDoesNotMakeAStartFromTouchingGrowth) {
+  // t_d = 1e-11 mm on fibres 1 mm long: a step that starts just touching (1e-12 mm) and pushes
+  // its overlaps to 1e-5 mm on the way is judged against 1e-8 of the extent, not against t_d;
+  // above 1e4 times that, 1e-4 mm, is growth.
+  DivergenceMonitor monitor(1e-11, 1.0);
+  monitor.observe(1, 1e-12);
+  EXPECT_EQ(monitor.observe(2, 1e-5), Verdict::fine);
+  EXPECT_EQ(monitor.observe(3, 1e-4), Verdict::fine);
+  EXPECT_EQ(monitor.observe(4, std::nextafter(1e-4, INFINITY)), Verdict::growth);
+  DivergenceMonitor without_extent(1e-11);  // no extent given: t_d alone, as before
+  without_extent.observe(1, 1e-12);
+  EXPECT_EQ(without_extent.observe(2, 2e-7), Verdict::growth);
 }
 
 TEST(DivergenceMonitor, BoundedOscillationIsStalledAfterFiveThousandIterations) {
