@@ -53,6 +53,17 @@ bool TrescaRadii::update(IterationState& state, const std::vector<Fibre>& fibres
   // scaling its slipping contacts to their own μP moves nothing by more than the tolerance.
   const bool settled = change < tolerance_;
   const bool exact_before = relaxation_ == 1.0 && settled_before_;
+  // The end: the state was put on the cone (|F| = μP exactly) when the radii settled, and the
+  // slips that left have been measured within the tolerance (the inner problem solved again where
+  // they were not) without moving a force since — or, where that solve moved the forces again,
+  // put on the cone a second time, which moves them by far less.
+  const bool done = settled && exact_before;
+  if (done && on_the_cone(state)) return false;
+  if (done && put_on_cone_) {
+    onto_coulomb_cone(state);
+    return false;
+  }
+  put_on_cone_ = done;
   settled_before_ = settled;
   adapt_relaxation(change, settled);
   for (std::size_t k = 0; k < state.contacts.size(); ++k) {
@@ -72,9 +83,16 @@ bool TrescaRadii::update(IterationState& state, const std::vector<Fibre>& fibres
       F = state.bound[i] / slip * c.slip;
     if (state.friction_iterate.size() == state.contacts.size()) state.friction_iterate[k] = F;
   }
-  const bool done = settled && exact_before;
-  if (done) onto_coulomb_cone(state);
-  return !done;
+  state.forces_gathered = false;  // the frictions moved with their radii
+  if (!(settled && exact_before)) return true;
+  onto_coulomb_cone(state);
+  return true;
+}
+
+bool TrescaRadii::on_the_cone(const IterationState& state) const {
+  for (std::size_t k = 0; k < state.contacts.size(); ++k)
+    if (state.bound[static_cast<Eigen::Index>(k)] != mu_ * state.contacts[k].force) return false;
+  return true;
 }
 
 void TrescaRadii::onto_coulomb_cone(IterationState& state) const {

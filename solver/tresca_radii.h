@@ -35,6 +35,9 @@ class TrescaRadii {
   /// A contact that slips on its circle (a zero radius lets a contact slip freely).
   bool on_its_circle(const IterationState& state, std::size_t k) const;
   void adapt_relaxation(double change, bool settled);
+  /// Every radius μP of the contact's current force: the state was put on the cone and has not
+  /// moved since.
+  bool on_the_cone(const IterationState& state) const;
 
   double mu_, tolerance_;
   long updates_ = 0;
@@ -42,6 +45,7 @@ class TrescaRadii {
   double last_change_ = INFINITY;
   int falling_ = 0;
   bool settled_before_ = false;
+  bool put_on_cone_ = false;  ///< the last update settled the radii and put the state on the cone
 };
 
 }  // namespace fibrecheck
