@@ -417,9 +417,8 @@ void IterativeSolver::sequence_starts_afresh() {
 // there that left more), or when it has stayed within t_d without a new smallest residual for
 // kFollowPatience iterations (a contact beside a support, whose slip the forces barely move, can
 // hold it above that hundredth for ever); the contact criterion is judged right after an update,
-// on the normals
-// the state's own forces give. True when they followed (the residuals are then those after the
-// update).
+// on the normals the state's own forces give. True when they followed (the residuals are then
+// those after the update).
 bool IterativeSolver::follows_the_fibres_now(long iteration, double residual) {
   if (!lagged_normals_) return false;
   const double t = overlap_tolerance_;
@@ -458,10 +457,10 @@ bool IterativeSolver::follows_the_fibres_now(long iteration, double residual) {
   return true;
 }
 
-// A run whose t_d was made smaller to meet force_tolerance and that stalls there (a contact
-// next to a support, whose slip the forces barely move, can hold the residual above the smaller
-// t_d) still meets the scene's own contact criterion: it is converged, with a warning that the
-// force tolerance was not reached.
+// A run whose t_d was made smaller to meet force_tolerance (frictionless, or the seed's friction
+// rule) and that stalls there (a contact next to a support, whose overlap the forces barely move,
+// can hold the residual above the smaller t_d) still meets the scene's own contact criterion: it
+// is converged, with a warning that the force tolerance was not reached.
 Termination IterativeSolver::stalled_within_scene_tolerance(const Termination& verdict) {
   const double t = options_.overlap_tolerance;
   if (verdict.criterion != Criterion::oscillation || !(overlap_tolerance_ < t) || !just_touching(t))

@@ -79,13 +79,12 @@ bool TrescaRadii::update(IterationState& state, const std::vector<Fibre>& fibres
     const double slip = c.slip.norm();
     if (slipping && size > 0.0)
       F *= state.bound[i] / size;
-    else if (slipping && slip > 0.0 && settled && exact_before)
+    else if (slipping && slip > 0.0 && done)
       F = state.bound[i] / slip * c.slip;
     if (state.friction_iterate.size() == state.contacts.size()) state.friction_iterate[k] = F;
   }
   state.forces_gathered = false;  // the frictions moved with their radii
-  if (!(settled && exact_before)) return true;
-  onto_coulomb_cone(state);
+  if (done) onto_coulomb_cone(state);
   return true;
 }
 
