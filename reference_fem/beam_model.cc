@@ -24,6 +24,7 @@
 #include <cmath>
 #include <fstream>
 #include <sstream>
+#include <stdexcept>
 
 #include "atomic_file.h"
 #include "fibre.h"
@@ -684,6 +685,29 @@ std::size_t BeamModel::unknowns() const {
 
 void BeamModel::setup_system() {
   if (impl_->dof_handler.n_dofs() == 0) impl_->setup_system();
+}
+
+long BeamModel::deflection_unknown(int fibre, double s, int plane) const {
+  const Implementation& m = *impl_;
+  const types::global_dof_index dof = m.node(m.nodes, fibre, s)[kW[plane]];
+  return m.constraints.is_constrained(dof) ? -1 : static_cast<long>(dof);
+}
+
+void BeamModel::for_each_matrix_entry(const std::function<void(long, long, double)>& entry) {
+  Implementation& m = *impl_;
+  if (m.solver_kind != BeamSolver::direct)
+    throw std::logic_error(
+        "BeamModel: the mixed system's matrix is assembled by solver direct only");
+  if (!m.matrix_assembled) run({}, false);
+  const PetscInt rows = static_cast<PetscInt>(m.dof_handler.n_dofs());
+  for (PetscInt row = 0; row < rows; ++row) {
+    PetscInt count = 0;
+    const PetscInt* columns = nullptr;
+    const PetscScalar* values = nullptr;
+    check(MatGetRow(m.system_matrix, row, &count, &columns, &values), "MatGetRow");
+    for (PetscInt i = 0; i < count; ++i) entry(row, columns[i], values[i]);
+    check(MatRestoreRow(m.system_matrix, row, &count, &columns, &values), "MatRestoreRow");
+  }
 }
 
 void BeamModel::write_vtu(const std::string& path, const std::string& record,

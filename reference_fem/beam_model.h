@@ -85,6 +85,16 @@ class BeamModel {
   /// Number of unknowns (both planes, w and M).
   std::size_t unknowns() const;
 
+  /// The unknown of the deflection in bending plane `plane` (0 along e1, 1 along e2) at the mesh
+  /// node at fraction `s` of a meshed fibre, or −1 where the support pins it (the deflection is
+  /// zero there, and nothing may act on it).
+  long deflection_unknown(int fibre, double s, int plane) const;
+
+  /// Calls `entry(row, column, value)` for every stored entry of the mixed system's matrix (with
+  /// the supports' rows and columns condensed to their diagonal, as the solves use it), to build a
+  /// larger system around it; the matrix is assembled first if it is not yet (solver `direct`).
+  void for_each_matrix_entry(const std::function<void(long, long, double)>& entry);
+
   /// Conjugate-gradient iterations so far (solver cg_amg).
   long cg_iterations() const;
 

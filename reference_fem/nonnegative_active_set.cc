@@ -3,26 +3,13 @@
 #include <algorithm>
 #include <cmath>
 
-#include "subset_solve.h"
-
 namespace fibrecheck {
 
 namespace {
 
-/// W·x over the non-zero x only: x is zero outside the pushing set, and few candidates push.
-Eigen::VectorXd times_pushing(const Eigen::SparseMatrix<double>& W, const Eigen::VectorXd& x) {
-  const Eigen::Index n = x.size();
-  Eigen::VectorXd y = Eigen::VectorXd::Zero(n);
-  for (Eigen::Index k = 0; k < n; ++k)
-    if (x[k] != 0.0)
-      for (Eigen::SparseMatrix<double>::InnerIterator it(W, k); it; ++it)
-        y[it.row()] += x[k] * it.value();
-  return y;
-}
-
 /// z: the forces that close every pushing contact's overlap, W_SS·z_S = d0_S, zero elsewhere;
 /// false when the set's system cannot be solved.
-bool solve_on_set(const Eigen::SparseMatrix<double>& W, const Eigen::VectorXd& d0,
+bool solve_on_set(const ContactCompliance& W, const Eigen::VectorXd& d0,
                   const std::vector<char>& pushing, Eigen::VectorXd& z) {
   const Eigen::Index n = d0.size();
   std::vector<Eigen::Index> index;
@@ -33,14 +20,14 @@ bool solve_on_set(const Eigen::SparseMatrix<double>& W, const Eigen::VectorXd& d
   if (m == 0) return true;
   Eigen::VectorXd ds(m), zs;
   for (Eigen::Index i = 0; i < m; ++i) ds[i] = d0[index[i]];
-  if (!solve_on_subset(W, index, ds, zs)) return false;
+  if (!W.solve_on_subset(index, ds, zs)) return false;
   for (Eigen::Index i = 0; i < m; ++i) z[index[i]] = zs[i];
   return true;
 }
 
 /// The warm start: the guessed set, less the contacts that would pull, until all push (an empty
 /// set when the guess cannot be solved). Returns the forces of that set.
-Eigen::VectorXd start_from_guess(const Eigen::SparseMatrix<double>& W, const Eigen::VectorXd& d0,
+Eigen::VectorXd start_from_guess(const ContactCompliance& W, const Eigen::VectorXd& d0,
                                  std::vector<char>& pushing) {
   Eigen::VectorXd z;
   for (;;) {
@@ -60,8 +47,8 @@ Eigen::VectorXd start_from_guess(const Eigen::SparseMatrix<double>& W, const Eig
 /// contact leaves the set (whatever round-off left of its force), and so does any other at zero;
 /// then z is solved again, until every force of the set's answer is positive. False when a set
 /// cannot be solved.
-bool step_back(const Eigen::SparseMatrix<double>& W, const Eigen::VectorXd& d0,
-               std::vector<char>& pushing, Eigen::VectorXd& P, Eigen::VectorXd& z) {
+bool step_back(const ContactCompliance& W, const Eigen::VectorXd& d0, std::vector<char>& pushing,
+               Eigen::VectorXd& P, Eigen::VectorXd& z) {
   const Eigen::Index n = d0.size();
   for (int inner = 0; inner < n + 1; ++inner) {
     double alpha = 1.0;
@@ -83,10 +70,19 @@ bool step_back(const Eigen::SparseMatrix<double>& W, const Eigen::VectorXd& d0,
 
 }  // namespace
 
+// The assembled W, through the same method.
 ActiveSetSolve nonnegative_active_set(const Eigen::SparseMatrix<double>& W,
                                       const Eigen::VectorXd& d0, double tolerance,
                                       const std::vector<char>& excluded, int max_passes,
                                       Eigen::VectorXd& P, std::vector<char>& pushing) {
+  return nonnegative_active_set(AssembledCompliance(W), d0, tolerance, excluded, max_passes, P,
+                                pushing);
+}
+
+ActiveSetSolve nonnegative_active_set(const ContactCompliance& W, const Eigen::VectorXd& d0,
+                                      double tolerance, const std::vector<char>& excluded,
+                                      int max_passes, Eigen::VectorXd& P,
+                                      std::vector<char>& pushing) {
   ActiveSetSolve result;
   const Eigen::Index n = d0.size();
   P = Eigen::VectorXd::Zero(n);
@@ -102,7 +98,7 @@ ActiveSetSolve nonnegative_active_set(const Eigen::SparseMatrix<double>& W,
   std::vector<char> set_aside(n, 0);
   Eigen::VectorXd z;
   for (result.passes = 1; result.passes <= max_passes; ++result.passes) {
-    const Eigen::VectorXd d = d0 - times_pushing(W, P);
+    const Eigen::VectorXd d = d0 - W.times(P);
     std::vector<Eigen::Index> overlapping;
     std::size_t set_size = 0;
     for (Eigen::Index k = 0; k < n; ++k) {
@@ -138,7 +134,7 @@ ActiveSetSolve nonnegative_active_set(const Eigen::SparseMatrix<double>& W,
       return result;
     }
     P = z.cwiseMax(0.0);
-    const double objective = 0.5 * P.dot(times_pushing(W, P)) - P.dot(d0);
+    const double objective = 0.5 * P.dot(W.times(P)) - P.dot(d0);
     const bool progress = objective < objective_before - 1e-14 * std::fabs(objective_before);
     if (progress)
       std::fill(set_aside.begin(), set_aside.end(), 0);

@@ -4,6 +4,8 @@
 #include <Eigen/SparseCore>
 #include <vector>
 
+#include "contact_compliance.h"
+
 namespace fibrecheck {
 
 struct ActiveSetSolve {
@@ -29,6 +31,11 @@ struct ActiveSetSolve {
 /// [0, ∞), solves friction's Tresca problems; the two stay apart because each one's order of
 /// passes, block additions and set-aside rule fix the answers it gives: here every frictionless
 /// answer to the last bit, there the friction answers, which need not be unique.
+ActiveSetSolve nonnegative_active_set(const ContactCompliance& W, const Eigen::VectorXd& d0,
+                                      double tolerance, const std::vector<char>& excluded,
+                                      int max_passes, Eigen::VectorXd& P,
+                                      std::vector<char>& pushing);
+/// The same with W assembled.
 ActiveSetSolve nonnegative_active_set(const Eigen::SparseMatrix<double>& W,
                                       const Eigen::VectorXd& d0, double tolerance,
                                       const std::vector<char>& excluded, int max_passes,

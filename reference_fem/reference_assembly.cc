@@ -30,7 +30,7 @@ void ReferenceSolver::assemble_system() {
 // takes the same branch after a non-finite solution.
 std::vector<double> ReferenceSolver::loads_and_influence() {
   u0_.assign(3 * offset_.back(), 0.0);
-  std::vector<double> G(g_offset_.back(), 0.0);
+  std::vector<double> G(saddle_point() ? 0 : g_offset_.back(), 0.0);
   if (model_) {
     model_->run({}, true);
     for (std::size_t f = 0; f < fibres_.size(); ++f)
@@ -50,10 +50,12 @@ std::vector<double> ReferenceSolver::loads_and_influence() {
       options_.progress("assemble_system: " + std::to_string(done) + " of " +
                         std::to_string(total) + " unit-load right-hand sides");
     };
-    const std::vector<Eigen::MatrixXd> influence = model_->influence_matrices(stations_, report);
+    const std::vector<Eigen::MatrixXd> influence =
+        saddle_point() ? std::vector<Eigen::MatrixXd>(fibres_.size())
+                       : model_->influence_matrices(stations_, report);
     for (std::size_t f = 0; f < fibres_.size(); ++f) {
       const std::size_t m = stations_[f].size();
-      if (!owned_[f]) continue;
+      if (!owned_[f] || influence[f].size() == 0) continue;
       for (std::size_t j = 0; j < m; ++j)
         for (std::size_t i = 0; i < m; ++i) G[g_offset_[f] + j * m + i] = influence[f](j, i);
     }
@@ -83,6 +85,10 @@ std::vector<std::vector<ReferenceSolver::ContactSide>> ReferenceSolver::assemble
     sides[c.a].push_back({k, station_a_[k], wall ? 1.0 : -1.0, true});
     if (!wall) sides[c.b].push_back({k, station_b_[k], 1.0, false});
   }
+  if (saddle_point()) {
+    make_saddle_point(sides);
+    return sides;
+  }
   std::vector<Eigen::Triplet<double>> entries;
   std::size_t count = 0;
   for (const auto& list : sides) count += list.size() * list.size();
@@ -104,6 +110,26 @@ std::vector<std::vector<ReferenceSolver::ContactSide>> ReferenceSolver::assemble
   W_.resize(n, n);
   W_.setFromTriplets(entries.begin(), entries.end());  // sums the two fibres' parts
   return sides;
+}
+
+// W as saddle points: each contact's sides (A first, whose process holds its constraint row) with
+// the force a unit reaction puts on them.
+void ReferenceSolver::make_saddle_point(const std::vector<std::vector<ContactSide>>& sides) {
+  std::vector<std::vector<ContactSideForce>> forces(contacts_.size());
+  for (std::size_t f = 0; f < fibres_.size(); ++f)
+    for (const ContactSide& side : sides[f]) {
+      const Eigen::Vector3d direction = reaction_direction(side.contact, 0, side.on_a);
+      const ContactSideForce force{static_cast<int>(f), stations_[f][side.station], direction};
+      auto& list = forces[side.contact];
+      if (side.on_a)
+        list.insert(list.begin(), force);
+      else
+        list.push_back(force);
+    }
+  std::vector<int> owner(fibres_.size());
+  for (std::size_t f = 0; f < fibres_.size(); ++f) owner[f] = static_cast<int>(f % processes_);
+  saddle_ = std::make_unique<SaddlePointCompliance>(comm_, model_.get(), fibres_, std::move(owner),
+                                                    std::move(forces));
 }
 
 // The direction φ along which component i of contact k's reaction acts on one of its sides (the

@@ -76,7 +76,9 @@ void add_reference_warnings(Result& r, const std::vector<std::string>& ambiguous
 std::string reference_summary(const ReferenceCounts& counts, const dealii::TimerOutput& timer) {
   std::ostringstream summary;
   summary.precision(3);
-  summary << "unknowns " << counts.unknowns << ", active-set passes " << counts.active_set_passes;
+  summary << "unknowns " << counts.unknowns;
+  if (counts.saddle_point) summary << ", contact problem held as saddle points";
+  summary << ", active-set passes " << counts.active_set_passes;
   if (counts.friction)
     summary << ", friction: Tresca updates " << counts.tresca_updates << ", Newton steps "
             << counts.newton_steps;
@@ -106,6 +108,7 @@ void ReferenceSolver::describe_run(Result& r, const std::vector<std::string>& am
   counts.newton_steps = newton_steps_;
   counts.cg = options_.beam_solver == BeamSolver::cg_amg;
   counts.cg_iterations = model_ ? model_->cg_iterations() : 0;
+  counts.saddle_point = saddle_point();
   if (!r.message.empty()) r.message += "; ";
   r.message += reference_summary(counts, timer_);
   if (options_.print_timing) {

@@ -59,10 +59,12 @@ struct ReferenceCounts {
   long newton_steps = 0;
   bool cg = false;  ///< the beams solved by CG (BeamSolver::cg_amg)
   long cg_iterations = 0;
+  bool saddle_point = false;  ///< the contact problem held as saddle points (ContactAssembly)
 };
 
-/// The message's tail: the unknowns, the active-set passes, the friction's fixed-point updates
-/// and Newton steps, the CG iterations of the last mesh, and the wall time (s) of each phase.
+/// The message's tail: the unknowns, how the contact problem was held, the active-set passes, the
+/// friction's fixed-point updates and Newton steps, the CG iterations of the last mesh, and the
+/// wall time (s) of each phase.
 std::string reference_summary(const ReferenceCounts& counts, const dealii::TimerOutput& timer);
 
 }  // namespace fibrecheck

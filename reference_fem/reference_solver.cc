@@ -8,6 +8,7 @@
 #include <cmath>
 #include <filesystem>
 #include <iostream>
+#include <limits>
 #include <map>
 #include <set>
 
@@ -131,6 +132,7 @@ void ReferenceSolver::detect() {
 void ReferenceSolver::make_grid() {
   dealii::TimerOutput::Scope scope(timer_, "make_grid");
   collect_stations();
+  saddle_.reset();
   model_.reset();
   // A process with more processes than fibres may own none: it then only takes part in the sums.
   const bool owns = std::any_of(owned_.begin(), owned_.end(), [](char o) { return o != 0; });
@@ -168,7 +170,11 @@ void ReferenceSolver::solve(Start start) {
     return;
   }
   std::vector<double> overlap(d0_.data(), d0_.data() + n), compliance(n);
-  for (Eigen::Index k = 0; k < n; ++k) compliance[k] = W_.coeff(k, k);
+  // Held as saddle points, a contact nothing can move is one whose every side is pinned.
+  const std::vector<char> pinned = saddle_ ? saddle_->immovable() : std::vector<char>();
+  for (Eigen::Index k = 0; k < n; ++k)
+    compliance[k] =
+        saddle_ ? (pinned[k] ? 0.0 : std::numeric_limits<double>::max()) : W_.coeff(k, k);
   if (auto why = find_unresolvable_overlap(contacts_, overlap, compliance, tolerance_, fibres_,
                                            scene_.walls)) {
     trouble_.why = *why;
@@ -199,8 +205,11 @@ void ReferenceSolver::solve(Start start) {
 bool ReferenceSolver::solve_frictionless(const std::vector<char>& excluded) {
   const Eigen::Index n = d0_.size();
   pushing_.resize(n, 0);
+  const AssembledCompliance assembled(W_);
+  const ContactCompliance& W =
+      saddle_ ? static_cast<const ContactCompliance&>(*saddle_) : assembled;
   const ActiveSetSolve solved = nonnegative_active_set(
-      W_, d0_, threshold_, excluded, options_.max_active_set_iterations, P_, pushing_);
+      W, d0_, threshold_, excluded, options_.max_active_set_iterations, P_, pushing_);
   active_set_iterations_ += solved.passes;
   if (solved.singular)
     trouble_.why =
@@ -424,10 +433,12 @@ void ReferenceSolver::collect_stations() {
 }
 
 // The influence matrices are dense per fibre and every process holds all of them and W: a contact
-// problem that would not fit in the memory the machine has is not assembled. The step ends
+// problem that would not fit in the memory the machine has is not assembled. Frictionless, it is
+// held as saddle points instead, whose memory grows with the unknowns; otherwise the step ends
 // beyond reach (the fibres under the scene's loads alone, with what it would need), rather than
 // exhausting the machine in the middle of the assembly.
 void ReferenceSolver::check_memory_reach() {
+  if (options_.contact_assembly == ContactAssembly::saddle_point && saddle_point_possible()) return;
   std::vector<std::size_t> count(fibres_.size(), 0), sides(fibres_.size(), 0), frictional;
   if (mu_ > 0.0) frictional.assign(fibres_.size(), 0);
   for (const Contact& c : contacts_)
@@ -444,7 +455,15 @@ void ReferenceSolver::check_memory_reach() {
   const MemoryNeed need = contact_problem_memory(count, sides, frictional);
   if (options_.progress && need.total() > (1 << 30))
     options_.progress(memory_line(need, within_reach_));
-  if (need.total() <= within_reach_) return;
+  compliance_beyond_reach_ = need.total() > within_reach_;
+  if (!compliance_beyond_reach_) return;
+  if (saddle_point_possible()) {
+    if (options_.progress)
+      options_.progress(
+          "the compliance matrix would not fit: the contact problem is held as "
+          "saddle points of the beams and the contacts instead");
+    return;
+  }
   trouble_.why = beyond_reach_message(need, within_reach_, fibres_[widest].id, count[widest]);
   trouble_.beyond_reach = true;
 }

@@ -19,6 +19,19 @@ enum class LineContact {
   continuous  ///< at the two Gauss points of n·2^K cells: the line contact itself as K grows
 };
 
+/// How the reference holds its contact problem.
+enum class ContactAssembly {
+  /// The compliance matrix W, assembled from each fibre's dense influence matrix in its contact
+  /// stations, held whole by every process: memory grows with the square of the contacts on a
+  /// fibre. Friction, the contact problem handed to outside solvers and the beam solver cg_amg
+  /// take this one.
+  compliance_matrix,
+  /// W never formed: products by finite-element solves and the active set's systems as saddle
+  /// points of the beams and the contacts' constraint rows, solved by MUMPS over the processes
+  /// (saddle_point_compliance.h): memory linear in the unknowns and shared out. Frictionless.
+  saddle_point
+};
+
 struct ReferenceOptions {
   LineContact line_contact = LineContact::slices;
   /// Refinements: elements (and in continuous mode the Gauss cells) are 2^refine times smaller.
@@ -37,6 +50,7 @@ struct ReferenceOptions {
   /// Degree of the beam elements: 2 (exact at the nodes and for the moments of uniform loads) or
   /// 1 (linear, for studies of the finite element itself).
   unsigned int degree = 2;
+  ContactAssembly contact_assembly = ContactAssembly::compliance_matrix;
   int max_outer_iterations = 30;
   int max_active_set_iterations = 100000;
   /// The beams' solution as a ParaView .vtu file (with several processes, one .vtu per process

@@ -26,6 +26,7 @@
 #include "reference_result.h"
 #include "reference_solver.h"
 #include "result.h"
+#include "saddle_point_compliance.h"
 #include "scene.h"
 #include "slip_origins.h"
 
@@ -114,6 +115,17 @@ class ReferenceSolver {
   /// The problem just solved, with its answer, for options_.contact_problem.
   void keep_contact_problem(const std::vector<char>& excluded);
 
+  /// The contact problem can be held as saddle points: frictionless, by MUMPS, not handed out.
+  bool saddle_point_possible() const {
+    return mu_ == 0.0 && options_.beam_solver == BeamSolver::direct && !options_.contact_problem;
+  }
+  /// It is: asked for, or the compliance matrix would not fit.
+  bool saddle_point() const {
+    return saddle_point_possible() &&
+           (options_.contact_assembly == ContactAssembly::saddle_point || compliance_beyond_reach_);
+  }
+  void make_saddle_point(const std::vector<std::vector<ContactSide>>& sides);
+
   // Deformed contact (deformed_contact.cc).
   double deformed_residual(const std::vector<Eigen::Vector3d>& u_a,
                            const std::vector<Eigen::Vector3d>& u_b) const;
@@ -159,6 +171,9 @@ class ReferenceSolver {
   Eigen::VectorXd d0_, P_;
   /// W is sparse: two contacts interact only through a fibre they share.
   Eigen::SparseMatrix<double> W_;
+  /// Or W never formed (saddle_point()).
+  std::unique_ptr<SaddlePointCompliance> saddle_;
+  bool compliance_beyond_reach_ = false;  ///< the compliance matrix would not fit: saddle points
   std::vector<char> pushing_;
   long active_set_iterations_ = 0;
   ReferenceTrouble trouble_;  ///< why the problem could not be solved, if it could not

@@ -48,6 +48,9 @@ ReferenceOptions reference_options(const FemArguments& args, const Scene& scene)
                      "stay below 2^20");
   options.max_refine = std::max(options.refine, finest_refinement(scene));
   options.beam_solver = args.beam_solver == "cg_amg" ? BeamSolver::cg_amg : BeamSolver::direct;
+  options.contact_assembly = args.contact_assembly == "saddle_point"
+                                 ? ContactAssembly::saddle_point
+                                 : ContactAssembly::compliance_matrix;
   options.degree = args.degree;
   if (ends_with(args.vtk, ".vtu")) options.vtu = args.vtk;
   options.print_timing = !args.quiet;
@@ -115,6 +118,11 @@ CLI::App* add_fem_command(CLI::App& app, FemArguments& args) {
                   "Beams' linear solver: direct (MUMPS, the default) or cg_amg (CG with hypre "
                   "BoomerAMG on the system's two Laplace halves)")
       ->check(CLI::IsMember({"direct", "cg_amg"}));
+  fem->add_option("--contact-assembly", args.contact_assembly,
+                  "The contact problem as the compliance matrix (the default: dense per fibre, "
+                  "held whole by every process) or as saddle points of the beams and the "
+                  "contacts (memory linear, shared over the processes; frictionless)")
+      ->check(CLI::IsMember({"compliance_matrix", "saddle_point"}));
   fem->add_option("--degree", args.degree,
                   "Degree of the beam elements: 2 (the default: exact at the nodes) or 1 (linear, "
                   "to study the elements themselves)")

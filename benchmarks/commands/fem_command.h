@@ -6,12 +6,14 @@
 namespace fibrecheck {
 
 /// `fibrecheck fem SCENE [--out RESULT] [--slices N] [--line-contact slices|continuous]
-/// [--refine K|auto] [--beam-solver direct|cg_amg] [--degree 1|2] [--vtk FILE]
+/// [--refine K|auto] [--beam-solver direct|cg_amg] [--contact-assembly
+/// compliance_matrix|saddle_point]
+/// [--degree 1|2] [--vtk FILE]
 /// [--export-contact-problem FILE] [--quiet]`: the implicit finite-element reference on one scene,
 /// on every MPI process it is started with.
 struct FemArguments {
   std::string scene, out, vtk, contact_problem, line_contact = "slices", beam_solver = "direct",
-                                                refine;
+                                                refine, contact_assembly = "compliance_matrix";
   int slices = 0;
   unsigned int degree = 2;
   bool quiet = false;
