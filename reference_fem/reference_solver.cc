@@ -18,12 +18,19 @@
 #include "load_path_solve.h"
 #include "memory_reach.h"
 #include "nonnegative_active_set.h"
+#include "primal_dual_active_set.h"
 #include "process_sums.h"
 #include "reference_solver_class.h"
 #include "tresca_fixed_point.h"
 #include "unresolvable_overlap.h"
 
 namespace fibrecheck {
+
+namespace {
+/// Passes of the primal-dual active set before the active set of nonnegative_active_set finishes
+/// from where it stopped.
+constexpr int kPrimalDualPasses = 50;
+}  // namespace
 
 ReferenceSolver::ReferenceSolver(const Scene& scene, const ReferenceOptions& options)
     : scene_(scene),
@@ -208,9 +215,18 @@ bool ReferenceSolver::solve_frictionless(const std::vector<char>& excluded) {
   const AssembledCompliance assembled(W_);
   const ContactCompliance& W =
       saddle_ ? static_cast<const ContactCompliance&>(*saddle_) : assembled;
-  const ActiveSetSolve solved = nonnegative_active_set(
-      W, d0_, threshold_, excluded, options_.max_active_set_iterations, P_, pushing_);
-  active_set_iterations_ += solved.passes;
+  // Held as saddle points, each pass factorises the whole finite-element system: the primal-dual
+  // active set first, which changes the set as much as it needs in a pass.
+  ActiveSetSolve solved;
+  if (saddle_) {
+    solved = primal_dual_active_set(W, d0_, threshold_, excluded, kPrimalDualPasses, P_, pushing_);
+    active_set_iterations_ += solved.passes;
+  }
+  if (!solved.solved) {
+    solved = nonnegative_active_set(W, d0_, threshold_, excluded,
+                                    options_.max_active_set_iterations, P_, pushing_);
+    active_set_iterations_ += solved.passes;
+  }
   if (solved.singular)
     trouble_.why =
         "the pushing contacts' compliance matrix is singular (contacts that constrain the "
