@@ -29,6 +29,7 @@
 #include "atomic_file.h"
 #include "fibre.h"
 #include "input_error.h"
+#include "petsc_check.h"
 
 namespace fibrecheck {
 
@@ -38,13 +39,6 @@ namespace {
 // Components of the finite element: deflection and moment in the bending plane of e1, then e2.
 constexpr unsigned int kW[2] = {0, 2};
 constexpr unsigned int kM[2] = {1, 3};
-
-/// PETSc calls report failure by their return code: turned into an exception naming the call.
-void check(PetscErrorCode code, const char* call) {
-  if (code != 0)
-    throw std::runtime_error(std::string("PETSc: ") + call + " failed (error " +
-                             std::to_string(code) + ")");
-}
 
 /// A solve that PETSc says diverged (a failed factorisation, CG out of iterations) is an error.
 void converged(KSP ksp, const char* what) {

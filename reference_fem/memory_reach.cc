@@ -64,7 +64,8 @@ std::string memory_line(const MemoryNeed& need, double within_reach) {
 }
 
 std::string beyond_reach_message(const MemoryNeed& need, double within_reach,
-                                 const std::string& widest_fibre, std::size_t widest_stations) {
+                                 const std::string& widest_fibre, std::size_t widest_stations,
+                                 bool saddle_points) {
   constexpr double kGiB = 1 << 30;
   std::ostringstream out;
   out.precision(3);
@@ -75,6 +76,9 @@ std::string beyond_reach_message(const MemoryNeed& need, double within_reach,
       << within_reach / kGiB
       << " GiB each process has on this machine: give the reference fewer slices "
          "(fibrecheck fem --slices) or a coarser continuous line contact";
+  if (saddle_points)
+    out << ", or hold the contact problem as saddle points, in memory linear in the unknowns "
+           "(fibrecheck fem --contact-assembly saddle_point)";
   return out.str();
 }
 

@@ -36,7 +36,10 @@ double memory_within_reach(MPI_Comm communicator);
 std::string memory_line(const MemoryNeed& need, double within_reach);
 
 /// The message of a scene beyond reach: what it would need against what there is.
+/// `saddle_points`: the problem could be held as saddle points instead, whose memory grows with
+/// the unknowns (ContactAssembly::saddle_point), and the message says how.
 std::string beyond_reach_message(const MemoryNeed& need, double within_reach,
-                                 const std::string& widest_fibre, std::size_t widest_stations);
+                                 const std::string& widest_fibre, std::size_t widest_stations,
+                                 bool saddle_points = false);
 
 }  // namespace fibrecheck

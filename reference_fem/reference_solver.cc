@@ -449,12 +449,11 @@ void ReferenceSolver::collect_stations() {
 }
 
 // The influence matrices are dense per fibre and every process holds all of them and W: a contact
-// problem that would not fit in the memory the machine has is not assembled. Frictionless, it is
-// held as saddle points instead, whose memory grows with the unknowns; otherwise the step ends
+// problem that would not fit in the memory the machine has is not assembled. The step ends
 // beyond reach (the fibres under the scene's loads alone, with what it would need), rather than
 // exhausting the machine in the middle of the assembly.
 void ReferenceSolver::check_memory_reach() {
-  if (options_.contact_assembly == ContactAssembly::saddle_point && saddle_point_possible()) return;
+  if (saddle_point()) return;
   std::vector<std::size_t> count(fibres_.size(), 0), sides(fibres_.size(), 0), frictional;
   if (mu_ > 0.0) frictional.assign(fibres_.size(), 0);
   for (const Contact& c : contacts_)
@@ -471,16 +470,9 @@ void ReferenceSolver::check_memory_reach() {
   const MemoryNeed need = contact_problem_memory(count, sides, frictional);
   if (options_.progress && need.total() > (1 << 30))
     options_.progress(memory_line(need, within_reach_));
-  compliance_beyond_reach_ = need.total() > within_reach_;
-  if (!compliance_beyond_reach_) return;
-  if (saddle_point_possible()) {
-    if (options_.progress)
-      options_.progress(
-          "the compliance matrix would not fit: the contact problem is held as "
-          "saddle points of the beams and the contacts instead");
-    return;
-  }
-  trouble_.why = beyond_reach_message(need, within_reach_, fibres_[widest].id, count[widest]);
+  if (need.total() <= within_reach_) return;
+  trouble_.why = beyond_reach_message(need, within_reach_, fibres_[widest].id, count[widest],
+                                      saddle_point_possible());
   trouble_.beyond_reach = true;
 }
 

@@ -119,10 +119,9 @@ class ReferenceSolver {
   bool saddle_point_possible() const {
     return mu_ == 0.0 && options_.beam_solver == BeamSolver::direct && !options_.contact_problem;
   }
-  /// It is: asked for, or the compliance matrix would not fit.
+  /// It is: asked for, and possible.
   bool saddle_point() const {
-    return saddle_point_possible() &&
-           (options_.contact_assembly == ContactAssembly::saddle_point || compliance_beyond_reach_);
+    return saddle_point_possible() && options_.contact_assembly == ContactAssembly::saddle_point;
   }
   void make_saddle_point(const std::vector<std::vector<ContactSide>>& sides);
 
@@ -173,7 +172,6 @@ class ReferenceSolver {
   Eigen::SparseMatrix<double> W_;
   /// Or W never formed (saddle_point()).
   std::unique_ptr<SaddlePointCompliance> saddle_;
-  bool compliance_beyond_reach_ = false;  ///< the compliance matrix would not fit: saddle points
   std::vector<char> pushing_;
   long active_set_iterations_ = 0;
   ReferenceTrouble trouble_;  ///< why the problem could not be solved, if it could not

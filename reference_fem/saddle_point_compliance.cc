@@ -8,20 +8,15 @@
 #include <stdexcept>
 #include <string>
 
+#include "petsc_check.h"
 #include "process_sums.h"
 
 namespace fibrecheck {
 
 namespace {
 
-void check(PetscErrorCode code, const char* call) {
-  if (code != 0)
-    throw std::runtime_error(std::string("PETSc: ") + call + " failed (error " +
-                             std::to_string(code) + ")");
-}
-
-/// The backward error a solve of the saddle-point system may leave: a direct solve with one step
-/// of iterative refinement leaves a few times machine epsilon.
+/// The backward error a solve of the saddle-point system may leave: a backward-stable direct solve
+/// leaves a few times machine epsilon.
 constexpr double kBackwardError = 1e-12;
 /// Steps of refinement on the set's own equations after each solve.
 constexpr int kRefinements = 1;

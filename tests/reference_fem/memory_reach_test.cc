@@ -36,6 +36,11 @@ TEST(MemoryReach, SaysWhatItWouldNeedAgainstWhatThereIs) {
   for (const char* part : {"8 GiB", "influence matrices 2 GiB", "compliance matrix 6 GiB",
                            "fibre A", "1000 contact stations", "4 GiB", "--slices"})
     EXPECT_NE(message.find(part), std::string::npos) << part << " not in: " << message;
+  // Frictionless, the saddle points could hold it: the message says how.
+  EXPECT_EQ(message.find("--contact-assembly saddle_point"), std::string::npos);
+  const std::string frictionless = beyond_reach_message(need, 4.0 * (1 << 30), "A", 1000, true);
+  EXPECT_NE(frictionless.find("--contact-assembly saddle_point"), std::string::npos)
+      << frictionless;
 }
 
 }  // namespace
