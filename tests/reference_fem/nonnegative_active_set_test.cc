@@ -126,8 +126,11 @@ TEST(PrimalDualActiveSet, MatchesEnumerationOrHandsOver) {
     const Eigen::VectorXd exact = enumerate(W, d0, excluded);
     ASSERT_EQ(exact.size(), n) << "trial " << trial;
     EXPECT_LT((P - exact).norm(), 1e-10 * (1.0 + exact.norm())) << "trial " << trial;
-    for (int i = 0; i < n; ++i)
-      if (excluded[i]) EXPECT_EQ(P[i], 0.0) << "trial " << trial;
+    for (int i = 0; i < n; ++i) {
+      if (excluded[i]) {
+        EXPECT_EQ(P[i], 0.0) << "trial " << trial;
+      }
+    }
   }
   RecordProperty("general_problems_handed_over", unsolved_general);
 }
