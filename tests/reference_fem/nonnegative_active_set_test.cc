@@ -117,7 +117,9 @@ TEST(PrimalDualActiveSet, MatchesEnumerationOrHandsOver) {
     const AssembledCompliance compliance(S);
     Eigen::VectorXd P;
     ActiveSetSolve solve = primal_dual_active_set(compliance, d0, 1e-13, excluded, 50, P, pushing);
-    if (m_matrix) EXPECT_TRUE(solve.solved) << "trial " << trial;
+    if (m_matrix) {
+      EXPECT_TRUE(solve.solved) << "trial " << trial;
+    }
     if (!solve.solved) {
       ++unsolved_general;
       solve = nonnegative_active_set(compliance, d0, 1e-13, excluded, 1000, P, pushing);
