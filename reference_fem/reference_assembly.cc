@@ -130,6 +130,7 @@ void ReferenceSolver::make_saddle_point(const std::vector<std::vector<ContactSid
   for (std::size_t f = 0; f < fibres_.size(); ++f) owner[f] = static_cast<int>(f % processes_);
   saddle_ = std::make_unique<SaddlePointCompliance>(comm_, model_.get(), fibres_, std::move(owner),
                                                     std::move(forces));
+  if (options_.progress && rank_ == 0) saddle_->report_to(options_.progress);
 }
 
 // The direction φ along which component i of contact k's reaction acts on one of its sides (the

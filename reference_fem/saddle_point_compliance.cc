@@ -219,6 +219,12 @@ bool SaddlePointCompliance::solve_on_subset(const std::vector<Eigen::Index>& ind
 SaddlePointCompliance::Outcome SaddlePointCompliance::factorise(
     const std::vector<Eigen::Index>& index, double regularisation) const {
   set_values(index, regularisation);
+  ++factorisations_;
+  if (progress_ && std::chrono::steady_clock::now() - last_report_ > std::chrono::seconds(5)) {
+    last_report_ = std::chrono::steady_clock::now();
+    progress_("  saddle points: " + std::to_string(factorisations_) + " factorisations, a set of " +
+              std::to_string(index.size()) + " contacts");
+  }
   // The preconditioner sees the new values and factorises again (analysed once: the pattern
   // stays). A failed factorisation is not an error to PETSc: the solve's reason says so.
   PC pc;

@@ -5,6 +5,9 @@
 #include <petscmat.h>
 
 #include <Eigen/Core>
+#include <chrono>
+#include <functional>
+#include <string>
 #include <vector>
 
 #include "beam_model.h"
@@ -53,6 +56,11 @@ class SaddlePointCompliance : public ContactCompliance {
   /// Per contact: every side of it lies where a support pins the fibre, so no force moves it.
   std::vector<char> immovable() const;
 
+  /// Hears a line every 5 s while sets are solved (each a factorisation of the whole system).
+  void report_to(std::function<void(const std::string&)> progress) {
+    progress_ = std::move(progress);
+  }
+
   /// The unknowns (finite elements and constraint rows) of the largest process's part.
   long largest_local_system() const { return largest_local_system_; }
 
@@ -87,6 +95,9 @@ class SaddlePointCompliance : public ContactCompliance {
   Vec rhs_ = nullptr, solution_ = nullptr;
   KSP ksp_ = nullptr;
   long largest_local_system_ = 0;
+  std::function<void(const std::string&)> progress_;
+  mutable long factorisations_ = 0;
+  mutable std::chrono::steady_clock::time_point last_report_ = std::chrono::steady_clock::now();
 };
 
 }  // namespace fibrecheck
