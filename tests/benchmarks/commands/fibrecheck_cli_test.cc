@@ -224,7 +224,9 @@ TEST_F(Cli, FemWritesTheSameResultSchema) {
   // Every field but the iterative solver's estimate of its own iteration error (the reference
   // has none to estimate).
   for (auto it = iterative.begin(); it != iterative.end(); ++it)
-    if (it.key() != "error_estimate") EXPECT_TRUE(fem.contains(it.key())) << it.key();
+    if (it.key() != "error_estimate") {
+      EXPECT_TRUE(fem.contains(it.key())) << it.key();
+    }
   EXPECT_TRUE(iterative.contains("error_estimate"));
   EXPECT_NEAR(fem["contacts"][0]["total_force"].get<double>(),
               iterative["contacts"][0]["total_force"].get<double>(), 1e-8 * 1.5e-5);
