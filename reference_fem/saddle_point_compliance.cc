@@ -61,7 +61,6 @@ void SaddlePointCompliance::make_system() {
   std::vector<long> first_row(static_cast<std::size_t>(processes_) + 1, 0);
   for (int r = 0; r < processes_; ++r) {
     first_row[r + 1] = first_row[r] + beams_of[r] + constraints_of[r];
-    largest_local_system_ = std::max(largest_local_system_, beams_of[r] + constraints_of[r]);
   }
   for (Eigen::Index k = 0; k < n; ++k) {
     const int r = owner_[sides_[k].front().fibre];
@@ -179,28 +178,20 @@ Eigen::VectorXd SaddlePointCompliance::times(const Eigen::VectorXd& x) const {
 }
 
 // As the assembled W's solve_on_subset: the set's system as it is, and where that is singular
-// (MUMPS finds a null pivot: contacts that constrain the same motion twice), regularised by 1e-10
-// of its largest self-compliance. The answer is then refined on the set's own equations, with
-// the residual b − (W_SS + εI)·x from the beams' factorisation: the saddle point's residual is
-// small in the beams' unknowns, but a line contact's compliance is a smooth kernel, and MUMPS over
-// several processes leaves the slices' forces 1e-6 apart without it.
+// (MUMPS finds a null pivot: contacts that constrain the same motion twice) or its solve fails,
+// regularised by 1e-10 of its largest self-compliance. The answer is then refined on the set's own
+// equations, with the residual b − (W_SS + εI)·x from the beams' factorisation: the saddle point's
+// residual is small in the beams' unknowns, but a line contact's compliance is a smooth kernel, and
+// MUMPS over several processes leaves the slices' forces 1e-6 apart without it.
 bool SaddlePointCompliance::solve_on_subset(const std::vector<Eigen::Index>& index,
                                             const Eigen::VectorXd& b, Eigen::VectorXd& x) const {
   const Eigen::Index m = static_cast<Eigen::Index>(index.size());
   x.resize(m);
   if (m == 0) return true;
   double epsilon = 0.0;
-  Outcome outcome = factorise(index, epsilon);
-  if (outcome == Outcome::singular) {
+  if (!factorise(index, epsilon) || !solve_factorised(index, b, x)) {
     epsilon = 1e-10 * self_compliances(index).cwiseAbs().maxCoeff();
-    outcome = factorise(index, epsilon);
-  }
-  if (outcome != Outcome::solved || solve_factorised(index, b, x) != Outcome::solved) {
-    if (epsilon > 0.0 || outcome == Outcome::failed) return false;
-    epsilon = 1e-10 * self_compliances(index).cwiseAbs().maxCoeff();
-    if (factorise(index, epsilon) != Outcome::solved ||
-        solve_factorised(index, b, x) != Outcome::solved)
-      return false;
+    if (!factorise(index, epsilon) || !solve_factorised(index, b, x)) return false;
   }
   Eigen::VectorXd full = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(sides_.size())), delta;
   for (int step = 0; step < kRefinements; ++step) {
@@ -208,16 +199,16 @@ bool SaddlePointCompliance::solve_on_subset(const std::vector<Eigen::Index>& ind
     const Eigen::VectorXd Wx = times(full);
     Eigen::VectorXd residual(m);
     for (Eigen::Index i = 0; i < m; ++i) residual[i] = b[i] - Wx[index[i]] - epsilon * x[i];
-    if (solve_factorised(index, residual, delta) != Outcome::solved) return false;
+    if (!solve_factorised(index, residual, delta)) return false;
     x += delta;
   }
   return x.allFinite();
 }
 
 // [S Bᵀ_S; B_S εI] for the set, the other contacts' rows x_k = 0, factorised by MUMPS over all
-// the processes; singular when MUMPS finds a null pivot in the unregularised system.
-SaddlePointCompliance::Outcome SaddlePointCompliance::factorise(
-    const std::vector<Eigen::Index>& index, double regularisation) const {
+// the processes.
+bool SaddlePointCompliance::factorise(const std::vector<Eigen::Index>& index,
+                                      double regularisation) const {
   set_values(index, regularisation);
   ++factorisations_;
   if (progress_ && std::chrono::steady_clock::now() - last_report_ > std::chrono::seconds(5)) {
@@ -234,13 +225,13 @@ SaddlePointCompliance::Outcome SaddlePointCompliance::factorise(
   check(PCFactorGetMatrix(pc, &factor), "PCFactorGetMatrix");
   PetscInt null_pivots = 0;
   check(MatMumpsGetInfog(factor, 28, &null_pivots), "MatMumpsGetInfog");
-  return null_pivots > 0 && regularisation == 0.0 ? Outcome::singular : Outcome::solved;
+  return null_pivots == 0 || regularisation > 0.0;
 }
 
 // [S Bᵀ_S; B_S εI]·[y; x] = [0; b] by the factorisation just made, judged by its own residual
 // (the normwise backward error of the whole system); x gathered on every process.
-SaddlePointCompliance::Outcome SaddlePointCompliance::solve_factorised(
-    const std::vector<Eigen::Index>& index, const Eigen::VectorXd& b, Eigen::VectorXd& x) const {
+bool SaddlePointCompliance::solve_factorised(const std::vector<Eigen::Index>& index,
+                                             const Eigen::VectorXd& b, Eigen::VectorXd& x) const {
   const PetscInt m = static_cast<PetscInt>(index.size());
   x.resize(m);
   check(VecSet(rhs_, 0.0), "VecSet");
@@ -252,7 +243,7 @@ SaddlePointCompliance::Outcome SaddlePointCompliance::solve_factorised(
   check(KSPSolve(ksp_, rhs_, solution_), "KSPSolve (MUMPS)");
   KSPConvergedReason reason;
   check(KSPGetConvergedReason(ksp_, &reason), "KSPGetConvergedReason");
-  if (reason < 0) return Outcome::singular;
+  if (reason < 0) return false;
 
   Vec residual;
   check(VecDuplicate(rhs_, &residual), "VecDuplicate");
@@ -264,7 +255,7 @@ SaddlePointCompliance::Outcome SaddlePointCompliance::solve_factorised(
   check(VecNorm(solution_, NORM_INFINITY, &s), "VecNorm");
   check(VecNorm(rhs_, NORM_INFINITY, &f), "VecNorm");
   VecDestroy(&residual);
-  if (!std::isfinite(s) || !(r <= kBackwardError * (a * s + f))) return Outcome::singular;
+  if (!std::isfinite(s) || !(r <= kBackwardError * (a * s + f))) return false;
 
   std::vector<PetscInt> rows(static_cast<std::size_t>(m));
   for (PetscInt i = 0; i < m; ++i) rows[i] = constraint_row_[index[i]];
@@ -286,7 +277,7 @@ SaddlePointCompliance::Outcome SaddlePointCompliance::solve_factorised(
   VecScatterDestroy(&scatter);
   VecDestroy(&gathered);
   ISDestroy(&wanted);
-  return x.allFinite() ? Outcome::solved : Outcome::failed;
+  return x.allFinite();
 }
 
 // Rounds of unit reactions on contacts that share no fibre: in a round, contact k's overlap

@@ -61,19 +61,17 @@ class SaddlePointCompliance : public ContactCompliance {
     progress_ = std::move(progress);
   }
 
-  /// The unknowns (finite elements and constraint rows) of the largest process's part.
-  long largest_local_system() const { return largest_local_system_; }
-
  private:
-  enum class Outcome { solved, singular, failed };
   /// The saddle-point matrix with a row and a column for every contact, made once: the pattern
   /// stays, so MUMPS analyses it once and each set only refactorises.
   void make_system();
   /// The set's values: its contacts' rows and columns, the others' rows the identity.
   void set_values(const std::vector<Eigen::Index>& index, double regularisation) const;
-  Outcome factorise(const std::vector<Eigen::Index>& index, double regularisation) const;
-  Outcome solve_factorised(const std::vector<Eigen::Index>& index, const Eigen::VectorXd& b,
-                           Eigen::VectorXd& x) const;
+  /// False when MUMPS finds a null pivot in the unregularised system.
+  bool factorise(const std::vector<Eigen::Index>& index, double regularisation) const;
+  /// False when the solve fails, its backward error is too large or its answer not finite.
+  bool solve_factorised(const std::vector<Eigen::Index>& index, const Eigen::VectorXd& b,
+                        Eigen::VectorXd& x) const;
   /// W_kk of the contacts `index`, by rounds of unit reactions that share no fibre.
   Eigen::VectorXd self_compliances(const std::vector<Eigen::Index>& index) const;
 
@@ -94,7 +92,6 @@ class SaddlePointCompliance : public ContactCompliance {
   Mat A_ = nullptr;
   Vec rhs_ = nullptr, solution_ = nullptr;
   KSP ksp_ = nullptr;
-  long largest_local_system_ = 0;
   std::function<void(const std::string&)> progress_;
   mutable long factorisations_ = 0;
   mutable std::chrono::steady_clock::time_point last_report_ = std::chrono::steady_clock::now();
