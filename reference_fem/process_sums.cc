@@ -16,4 +16,10 @@ void sum_over_processes(std::vector<double>& values, MPI_Comm comm) {
                   comm);
 }
 
+bool all_over_processes(bool holds, MPI_Comm comm) {
+  int all = holds ? 1 : 0;
+  MPI_Allreduce(MPI_IN_PLACE, &all, 1, MPI_INT, MPI_MIN, comm);
+  return all != 0;
+}
+
 }  // namespace fibrecheck

@@ -13,4 +13,7 @@ namespace fibrecheck {
 /// place; nothing to do on one process. MPI counts are ints, so long vectors go in pieces.
 void sum_over_processes(std::vector<double>& values, MPI_Comm comm);
 
+/// Whether `holds` holds on every process of `comm`.
+bool all_over_processes(bool holds, MPI_Comm comm);
+
 }  // namespace fibrecheck

@@ -23,11 +23,9 @@ void ReferenceSolver::assemble_system() {
 }
 
 // The displacements u0_ at every station under the scene's loads, and the influence matrices G_f
-// (mm/N, the same in both bending planes; packed by g_offset_), which the function returns. The
-// fibres do not interact through the beams, so one solve can carry a unit load on every fibre at
-// once: solve i loads the i-th station of each fibre and gives the i-th column of every G_f. Each
-// process fills in its own fibres; the sums give every process all of them, so that every process
-// takes the same branch after a non-finite solution.
+// (mm/N, the same in both bending planes; packed by g_offset_), which the function returns. Each
+// process fills in its own fibres; where the compliance is not shared, the sums give
+// every process all of them. Every process takes the same branch after a non-finite solution.
 std::vector<double> ReferenceSolver::loads_and_influence() {
   u0_.assign(3 * offset_.back(), 0.0);
   std::vector<double> G(saddle_point() ? 0 : g_offset_.back(), 0.0);
@@ -61,15 +59,17 @@ std::vector<double> ReferenceSolver::loads_and_influence() {
     }
   }
   sum_over_processes(u0_, comm_);
-  sum_over_processes(G, comm_);
-  if (!std::all_of(u0_.begin(), u0_.end(), [](double x) { return std::isfinite(x); }) ||
-      !std::all_of(G.begin(), G.end(), [](double x) { return std::isfinite(x); }))
-    trouble_.non_finite = true;
+  if (!compliance_shared()) sum_over_processes(G, comm_);
+  const auto finite = [](double x) { return std::isfinite(x); };
+  const bool all_finite =
+      std::all_of(u0_.begin(), u0_.end(), finite) && std::all_of(G.begin(), G.end(), finite);
+  if (!all_over_processes(all_finite, comm_)) trouble_.non_finite = true;
   return G;
 }
 
 // The overlaps d0_ under the scene's loads and W_jk = Σ_f α_j α_k G_f(j, k) n_j⊥·n_k⊥ over the
-// fibres both contacts act on, ⊥ the part across the fibre (mm/N). Returns each fibre's contact
+// fibres both contacts act on, ⊥ the part across the fibre (mm/N); shared, the sum over this
+// process's fibres. Returns each fibre's contact
 // sides, from which the frictional blocks are assembled alike.
 std::vector<std::vector<ReferenceSolver::ContactSide>> ReferenceSolver::assemble_compliance(
     const std::vector<double>& G) {
@@ -89,11 +89,15 @@ std::vector<std::vector<ReferenceSolver::ContactSide>> ReferenceSolver::assemble
     make_saddle_point(sides);
     return sides;
   }
+  // Shared, each process assembles the part of its own fibres.
+  const auto held = [&](std::size_t f) { return owned_[f] || !compliance_shared(); };
   std::vector<Eigen::Triplet<double>> entries;
   std::size_t count = 0;
-  for (const auto& list : sides) count += list.size() * list.size();
+  for (std::size_t f = 0; f < fibres_.size(); ++f)
+    if (held(f)) count += sides[f].size() * sides[f].size();
   entries.reserve(count);
   for (std::size_t f = 0; f < fibres_.size(); ++f) {
+    if (!held(f)) continue;
     const std::size_t m = stations_[f].size();
     const Eigen::Vector3d t = fibres_[f].t;
     for (const ContactSide& j : sides[f]) {

@@ -21,6 +21,7 @@
 #include "primal_dual_active_set.h"
 #include "process_sums.h"
 #include "reference_solver_class.h"
+#include "shared_compliance.h"
 #include "tresca_fixed_point.h"
 #include "unresolvable_overlap.h"
 
@@ -179,9 +180,10 @@ void ReferenceSolver::solve(Start start) {
   std::vector<double> overlap(d0_.data(), d0_.data() + n), compliance(n);
   // Held as saddle points, a contact nothing can move is one whose every side is pinned.
   const std::vector<char> pinned = saddle_ ? saddle_->immovable() : std::vector<char>();
+  const Eigen::VectorXd diagonal =
+      compliance_shared() && !saddle_ ? SharedCompliance(W_, comm_).diagonal() : W_.diagonal();
   for (Eigen::Index k = 0; k < n; ++k)
-    compliance[k] =
-        saddle_ ? (pinned[k] ? 0.0 : std::numeric_limits<double>::max()) : W_.coeff(k, k);
+    compliance[k] = saddle_ ? (pinned[k] ? 0.0 : std::numeric_limits<double>::max()) : diagonal[k];
   if (auto why = find_unresolvable_overlap(contacts_, overlap, compliance, tolerance_, fibres_,
                                            scene_.walls)) {
     trouble_.why = *why;
@@ -213,12 +215,20 @@ bool ReferenceSolver::solve_frictionless(const std::vector<char>& excluded) {
   const Eigen::Index n = d0_.size();
   pushing_.resize(n, 0);
   const AssembledCompliance assembled(W_);
-  const ContactCompliance& W =
-      saddle_ ? static_cast<const ContactCompliance&>(*saddle_) : assembled;
-  // Held as saddle points, each pass factorises the whole finite-element system: the primal-dual
-  // active set first, which changes the set as much as it needs in a pass.
+  const SharedCompliance shared(W_, comm_);
+  const ContactCompliance& W = saddle_ ? static_cast<const ContactCompliance&>(*saddle_)
+                               : compliance_shared() ? static_cast<const ContactCompliance&>(shared)
+                                                     : assembled;
+  // The primal-dual active set changes the set as much as it needs in a pass, and from a warm
+  // start (the pushing set of the last geometric update or outer iteration) it takes a handful.
+  // From cold its first set is every contact that overlaps under the loads alone, on a tow many
+  // times the set that pushes at the end, whose W_SS takes more memory to factorise than the rest
+  // of the contact problem; the block active set, which grows its set from nothing, starts there.
+  // Held as saddle points each pass is a whole factorisation, and the primal-dual set goes first.
+  // Where it cycles the block active set finishes from its last set.
   ActiveSetSolve solved;
-  if (saddle_) {
+  const bool warm = std::any_of(pushing_.begin(), pushing_.end(), [](char p) { return p != 0; });
+  if (saddle_ || warm) {
     solved = primal_dual_active_set(W, d0_, threshold_, excluded, kPrimalDualPasses, P_, pushing_);
     active_set_iterations_ += solved.passes;
   }
@@ -436,7 +446,8 @@ void ReferenceSolver::collect_stations() {
                            [](double x, double y) { return std::fabs(x - y) < 1e-12; }),
                list.end());
     offset_[f + 1] = offset_[f] + list.size();
-    g_offset_[f + 1] = g_offset_[f] + list.size() * list.size();
+    const bool held = owned_[f] || !compliance_shared();
+    g_offset_[f + 1] = g_offset_[f] + (held ? list.size() * list.size() : 0);
   }
   station_a_.resize(contacts_.size());
   station_b_.resize(contacts_.size());
@@ -448,9 +459,10 @@ void ReferenceSolver::collect_stations() {
   check_memory_reach();
 }
 
-// The influence matrices are dense per fibre and every process holds all of them and W: a contact
-// problem that would not fit in the memory the machine has is not assembled. The step ends
-// beyond reach (the fibres under the scene's loads alone, with what it would need), rather than
+// The influence matrices are dense per fibre, and each process holds those of its own fibres and
+// their part of W (shared) or all of them and W: a contact problem that would not fit in the
+// memory the machine has is not assembled. The step ends beyond reach (the fibres under the
+// scene's loads alone, with what it would need on the process that needs most), rather than
 // exhausting the machine in the middle of the assembly.
 void ReferenceSolver::check_memory_reach() {
   if (saddle_point()) return;
@@ -458,21 +470,23 @@ void ReferenceSolver::check_memory_reach() {
   if (mu_ > 0.0) frictional.assign(fibres_.size(), 0);
   for (const Contact& c : contacts_)
     for (const int f : {c.a, c.kind == ContactKind::wall ? -1 : c.b}) {
-      if (f < 0) continue;
+      if (f < 0 || (compliance_shared() && !owned_[f])) continue;
       ++sides[f];
       if (mu_ > 0.0) frictional[f] += 1 + c.tangents;
     }
   std::size_t widest = 0;
   for (std::size_t f = 0; f < fibres_.size(); ++f) {
-    count[f] = stations_[f].size();
-    if (count[f] > count[widest]) widest = f;
+    count[f] = compliance_shared() && !owned_[f] ? 0 : stations_[f].size();
+    if (stations_[f].size() > stations_[widest].size()) widest = f;
   }
-  const MemoryNeed need = contact_problem_memory(count, sides, frictional);
+  MemoryNeed need = contact_problem_memory(count, sides, frictional);
+  MPI_Allreduce(MPI_IN_PLACE, &need.influence, 1, MPI_DOUBLE, MPI_MAX, comm_);
+  MPI_Allreduce(MPI_IN_PLACE, &need.compliance, 1, MPI_DOUBLE, MPI_MAX, comm_);
   if (options_.progress && need.total() > (1 << 30))
     options_.progress(memory_line(need, within_reach_));
   if (need.total() <= within_reach_) return;
-  trouble_.why = beyond_reach_message(need, within_reach_, fibres_[widest].id, count[widest],
-                                      saddle_point_possible());
+  trouble_.why = beyond_reach_message(need, within_reach_, fibres_[widest].id,
+                                      stations_[widest].size(), saddle_point_possible());
   trouble_.beyond_reach = true;
 }
 

@@ -123,6 +123,9 @@ class ReferenceSolver {
   bool saddle_point() const {
     return saddle_point_possible() && options_.contact_assembly == ContactAssembly::saddle_point;
   }
+  /// W is shared out over the processes by fibres (shared_compliance.h): each holds its own fibres'
+  /// influence matrices and part of W. Friction and a problem handed out take the whole W.
+  bool compliance_shared() const { return mu_ == 0.0 && !options_.contact_problem; }
   void make_saddle_point(const std::vector<std::vector<ContactSide>>& sides);
 
   // Deformed contact (deformed_contact.cc).
@@ -168,7 +171,8 @@ class ReferenceSolver {
   bool remesh_ = false;  ///< deformed contact: a crossing moved off its station
   int crossing_moves_ = 0;
   Eigen::VectorXd d0_, P_;
-  /// W is sparse: two contacts interact only through a fibre they share.
+  /// W is sparse: two contacts interact only through a fibre they share. Where the compliance is
+  /// shared, this process's part of it.
   Eigen::SparseMatrix<double> W_;
   /// Or W never formed (saddle_point()).
   std::unique_ptr<SaddlePointCompliance> saddle_;

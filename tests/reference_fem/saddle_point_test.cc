@@ -33,8 +33,10 @@ double summed_force(const Result& r) {
 // Both are exact solutions of one problem, so they agree to the round-off of their
 // factorisations wherever the problem determines the answer well: deflections, energies and the
 // summed force to 1e-9 (they meet at 1e-12 on these scenes). A line contact's single slices are
-// determined less well — its compliance is a smooth kernel, and either method's slice forces
-// scatter by 2e-7 about a smooth line force on the parallel fibres — so those are held to 1e-6.
+// determined less well: its compliance is a smooth kernel, W_SS of the parallel fibres' 100
+// slices has a condition number of 4.9e7, and every finite-element solve behind either method is
+// accepted at a backward error of 1e-12 — so the slice forces are held to 4.9e7 × 1e-12 ≈ 5e-5
+// of the largest (they meet at about 1e-6).
 TEST(SaddlePointContact, GivesTheAnswersOfTheComplianceMatrix) {
   for (const char* name : {"parallel_fibres", "two_fibres_crossing"}) {
     SCOPED_TRACE(name);
@@ -63,7 +65,7 @@ TEST(SaddlePointContact, GivesTheAnswersOfTheComplianceMatrix) {
       ASSERT_EQ(matrix.contacts[k].points.size(), saddle.contacts[k].points.size());
       for (std::size_t i = 0; i < matrix.contacts[k].points.size(); ++i)
         EXPECT_LE((matrix.contacts[k].points[i].force - saddle.contacts[k].points[i].force).norm(),
-                  1e-6 * largest_force);
+                  5e-5 * largest_force);
     }
   }
 }
