@@ -57,9 +57,10 @@ std::string memory_line(const MemoryNeed& need, double within_reach) {
   constexpr double kGiB = 1 << 30;
   std::ostringstream out;
   out.precision(3);
-  out << "contact problem: " << need.total() / kGiB << " GiB on every process (influence matrices "
-      << need.influence / kGiB << ", compliance matrix " << need.compliance / kGiB << "), "
-      << within_reach / kGiB << " GiB within reach";
+  out << "contact problem: " << need.total() / kGiB
+      << " GiB on the process that needs most (influence matrices " << need.influence / kGiB
+      << ", compliance matrix " << need.compliance / kGiB << "), " << within_reach / kGiB
+      << " GiB within reach";
   return out.str();
 }
 
@@ -70,7 +71,7 @@ std::string beyond_reach_message(const MemoryNeed& need, double within_reach,
   std::ostringstream out;
   out.precision(3);
   out << "the reference's contact problem would need " << need.total() / kGiB
-      << " GiB on every process (dense influence matrices " << need.influence / kGiB
+      << " GiB on the process that needs most (dense influence matrices " << need.influence / kGiB
       << " GiB, compliance matrix " << need.compliance / kGiB << " GiB; fibre " << widest_fibre
       << " alone has " << widest_stations << " contact stations), more than the "
       << within_reach / kGiB
