@@ -10,6 +10,7 @@
 
 #include "blas_threads.h"
 #include "reference_solver.h"
+#include "shared_compliance.h"
 
 namespace fibrecheck {
 namespace {
@@ -57,6 +58,47 @@ TEST(ReferenceMpi, TwoProcessesGiveTheAnswerOfOne) {
   MPI_Bcast(first.data(), static_cast<int>(first.size()), MPI_DOUBLE, 0, MPI_COMM_WORLD);
   for (std::size_t i = 0; i < y.size(); ++i) EXPECT_EQ(first[i], y[i]) << i;
   EXPECT_NE(std::find(two.stages.begin(), two.stages.end(), "mpi_2_processes"), two.stages.end());
+}
+
+// W shared out over two processes, each holding part of every shared entry (as two fibres give
+// parts of one contact's W_jk), acts as the whole W on one: products to the round-off of one sum,
+// solves on a set to that of a factorisation of a well-conditioned matrix, the same bits on both
+// processes.
+TEST(ReferenceMpi, SharedComplianceActsAsTheWholeOnOne) {
+  const int rank = static_cast<int>(dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD));
+  if (dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) != 2)
+    GTEST_SKIP() << "run this test with mpiexec -np 2";
+  // W = I + A·Aᵀ, A banded: sparse, symmetric, positive definite, condition about 10.
+  constexpr int n = 40;
+  Eigen::SparseMatrix<double> A(n, n);
+  std::vector<Eigen::Triplet<double>> a;
+  for (int i = 0; i < n; ++i)
+    for (int j = std::max(0, i - 2); j <= std::min(n - 1, i + 2); ++j)
+      a.emplace_back(i, j, 0.3 + 0.1 * ((3 * i + 7 * j) % 5));
+  A.setFromTriplets(a.begin(), a.end());
+  Eigen::SparseMatrix<double> identity(n, n);
+  identity.setIdentity();
+  const Eigen::SparseMatrix<double> W = identity + Eigen::SparseMatrix<double>(A * A.transpose());
+  // Process r's part: a quarter (r = 0) or three quarters (r = 1) of each entry.
+  const Eigen::SparseMatrix<double> part = (rank == 0 ? 0.25 : 0.75) * W;
+  const AssembledCompliance whole(W);
+  const SharedCompliance shared(part, MPI_COMM_WORLD);
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(n);
+  for (int k = 0; k < n; k += 3) x[k] = 1.0 + 0.01 * k;
+  const Eigen::VectorXd Wx = whole.times(x), Sx = shared.times(x);
+  EXPECT_LE((Wx - Sx).cwiseAbs().maxCoeff(), 1e-15 * Wx.cwiseAbs().maxCoeff() * n);
+  const Eigen::VectorXd d = shared.diagonal();
+  for (int k = 0; k < n; ++k) EXPECT_NEAR(d[k], W.coeff(k, k), 1e-15 * W.coeff(k, k));
+  const std::vector<Eigen::Index> set = {1, 2, 3, 7, 8, 20, 21, 22, 39};
+  const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(static_cast<Eigen::Index>(set.size()), 1, 2);
+  Eigen::VectorXd from_whole, from_shared;
+  ASSERT_TRUE(whole.solve_on_subset(set, b, from_whole));
+  ASSERT_TRUE(shared.solve_on_subset(set, b, from_shared));
+  EXPECT_LE((from_whole - from_shared).cwiseAbs().maxCoeff(),
+            1e-13 * from_whole.cwiseAbs().maxCoeff());
+  Eigen::VectorXd first = from_shared;
+  MPI_Bcast(first.data(), static_cast<int>(first.size()), MPI_DOUBLE, 0, MPI_COMM_WORLD);
+  for (Eigen::Index i = 0; i < first.size(); ++i) EXPECT_EQ(first[i], from_shared[i]) << i;
 }
 
 // The contact problem held as saddle points over two processes (each holds one fibre's unknowns,
