@@ -94,6 +94,15 @@ std::string reference_summary(const ReferenceCounts& counts, const dealii::Timer
 void ReferenceSolver::describe_run(Result& r, const std::vector<std::string>& ambiguous, int outer,
                                    std::chrono::steady_clock::time_point start) {
   add_reference_warnings(r, ambiguous, fibres_, scene_, tolerance_);
+  if (options_.contact_assembly == ContactAssembly::saddle_point && !saddle_point_possible())
+    r.warnings.push_back(
+        "saddle points were asked for (--contact-assembly saddle_point), but they hold only a "
+        "frictionless problem on MUMPS's beams that is not exported; this run, " +
+        std::string(mu_ > 0.0 ? "with friction"
+                    : options_.beam_solver != BeamSolver::direct
+                        ? "with --beam-solver cg_amg"
+                        : "exporting its contact problem") +
+        ", held the compliance matrix");
   r.iterations = outer;
   r.finite_elements->active_set_iterations = active_set_iterations_;
   r.finite_elements->unknowns = static_cast<long>(

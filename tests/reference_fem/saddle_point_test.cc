@@ -101,5 +101,18 @@ TEST(SaddlePointContact, OverlapAtTwoPinnedSupportsIsUnresolvable) {
   EXPECT_NE(r.message.find("A and B"), std::string::npos) << r.message;
 }
 
+// Asked for where they cannot hold the problem (friction), the saddle points are not used, and
+// the result says so rather than quietly holding the compliance matrix.
+TEST(SaddlePointContact, AskedForWithFrictionTheResultSaysTheMatrixHeldIt) {
+  Scene scene = read_scene(std::string(FIBRECHECK_SCENES_DIR) + "/two_fibres_crossing.json");
+  scene.contact.friction = 0.3;
+  const Result r = held_as(scene, ContactAssembly::saddle_point);
+  ASSERT_EQ(r.status, Status::converged) << r.message;
+  EXPECT_EQ(r.message.find("held as saddle points"), std::string::npos) << r.message;
+  EXPECT_TRUE(std::any_of(r.warnings.begin(), r.warnings.end(), [](const std::string& w) {
+    return w.find("with friction, held the compliance matrix") != std::string::npos;
+  }));
+}
+
 }  // namespace
 }  // namespace fibrecheck
