@@ -99,6 +99,19 @@ std::vector<FibreStations> mesh_stations(const Scene& scene, const MeshOptions& 
   return stations;
 }
 
+long mesh_elements(const Scene& scene, const MeshOptions& options) {
+  const std::vector<FibreStations> stations = mesh_stations(scene, options);
+  long elements = 0;
+  for (std::size_t i = 0; i < scene.fibres.size(); ++i) {
+    if (!options.fibres.empty() && !options.fibres[i]) continue;
+    const FibreStations& f = stations[i];
+    const std::vector<double> size = station_sizes(f, options);
+    const double L = (scene.fibres[i].end - scene.fibres[i].start).norm();
+    for (std::size_t j = 0; j + 1 < f.s.size(); ++j) elements += interval_elements(f, size, j, L);
+  }
+  return elements;
+}
+
 namespace {
 void write_mesh_with_gmsh(const Scene& scene, const MeshOptions& options, const std::string& path) {
   const std::vector<FibreStations> stations = mesh_stations(scene, options);

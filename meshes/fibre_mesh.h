@@ -34,6 +34,10 @@ struct FibreStations {
 /// the iterative solver's detection, so both solvers see the same contacts).
 std::vector<FibreStations> mesh_stations(const Scene& scene, const MeshOptions& options);
 
+/// The elements write_mesh makes on the fibres `options.fibres` marks (all when it is empty), as
+/// the memory a mesh will take can be known before it is made.
+long mesh_elements(const Scene& scene, const MeshOptions& options);
+
 /// Meshes every fibre's chord as a 1-D curve with Gmsh — nodes at every station, refined near
 /// contacts — with physical groups named after the fibre ids (curves) and `<id>/start`,
 /// `<id>/end` (supports), and writes it as a Gmsh .msh file (format 4.1).

@@ -8,15 +8,22 @@
 
 namespace fibrecheck {
 
-/// What the reference's contact problem holds on every process (bytes): the dense influence
-/// matrix of each fibre in its contact stations, and the compliance matrix W assembled from them,
-/// whose entries couple every two contacts on a fibre (with friction, every two of their reaction
-/// components). Both grow with the square of the contacts per fibre.
+/// What the reference holds on a process (bytes): the dense influence matrix of each fibre in its
+/// contact stations, and the compliance matrix W assembled from them, whose entries couple every
+/// two contacts on a fibre (with friction, every two of their reaction components) — both grow
+/// with the square of the contacts per fibre — and the finite elements of its fibres, which grow
+/// with their unknowns.
 struct MemoryNeed {
   double influence = 0.0;
   double compliance = 0.0;
-  double total() const { return influence + compliance; }
+  double finite_elements = 0.0;
+  double total() const { return influence + compliance + finite_elements; }
 };
+
+/// What the finite elements of `unknowns` unknowns take at their peak (bytes): Gmsh's model while
+/// it meshes them, the beams' matrix and MUMPS's factorisation, and the blocks of right-hand sides
+/// the influence matrices are solved in.
+double finite_element_memory(double unknowns);
 
 /// The need of `stations` contact stations and `sides` contacts acting on each fibre, and with
 /// friction (`frictional` not empty) their reaction components there (1 + tangents each): G in

@@ -16,10 +16,11 @@ namespace fibrecheck {
 /// Why the reference could not solve a step's contact problem (empty `why` when it could).
 struct ReferenceTrouble {
   std::string why;
-  bool non_finite = false;          ///< the finite-element solutions were not finite
-  bool friction_unsettled = false;  ///< the frictional problem did not settle
-  bool normals_unsettled = false;   ///< deformed contact: the normals did not settle
-  bool beyond_reach = false;        ///< the contact problem would not fit in memory
+  bool non_finite = false;           ///< the finite-element solutions were not finite
+  bool friction_unsettled = false;   ///< the frictional problem did not settle
+  bool normals_unsettled = false;    ///< deformed contact: the normals did not settle
+  bool beyond_reach = false;         ///< the contact problem would not fit in memory
+  bool fibres_beyond_reach = false;  ///< nor would the finite elements alone: nothing is meshed
 };
 
 /// How the reference's outer loop ended.

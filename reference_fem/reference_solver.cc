@@ -146,8 +146,10 @@ void ReferenceSolver::make_grid() {
   const bool owns = std::any_of(owned_.begin(), owned_.end(), [](char o) { return o != 0; });
   MeshOptions mesh = mesh_options();
   mesh.fibres = owned_;
-  // Beyond reach, only the fibres under the scene's loads are solved: no node at the stations.
+  // Beyond reach, only the fibres under the scene's loads are solved (no node at the stations), or
+  // nothing at all.
   if (trouble_.beyond_reach) mesh.contact_stations.assign(fibres_.size(), {});
+  if (trouble_.fibres_beyond_reach) return;
   {
     dealii::TimerOutput::Scope gmsh(timer_, "make_grid: Gmsh");
     if (owns) write_mesh(scene_, mesh, mesh_file_);
@@ -460,12 +462,13 @@ void ReferenceSolver::collect_stations() {
 }
 
 // The influence matrices are dense per fibre, and each process holds those of its own fibres and
-// their part of W (shared) or all of them and W: a contact problem that would not fit in the
-// memory the machine has is not assembled. The step ends beyond reach (the fibres under the
-// scene's loads alone, with what it would need on the process that needs most), rather than
-// exhausting the machine in the middle of the assembly.
+// their part of W (shared) or all of them and W; the finite elements of its own fibres grow with
+// their unknowns. A problem that would not fit in the memory the machine has is not made: the step
+// ends beyond reach, with what it would need on the process that needs most, rather than
+// exhausting the machine in the middle of it. Where the contact problem alone is too much, the
+// fibres under the scene's loads are still solved; where the finite elements are, nothing is
+// meshed.
 void ReferenceSolver::check_memory_reach() {
-  if (saddle_point()) return;
   std::vector<std::size_t> count(fibres_.size(), 0), sides(fibres_.size(), 0), frictional;
   if (mu_ > 0.0) frictional.assign(fibres_.size(), 0);
   for (const Contact& c : contacts_)
@@ -479,15 +482,31 @@ void ReferenceSolver::check_memory_reach() {
     count[f] = compliance_shared() && !owned_[f] ? 0 : stations_[f].size();
     if (stations_[f].size() > stations_[widest].size()) widest = f;
   }
-  MemoryNeed need = contact_problem_memory(count, sides, frictional);
+  MemoryNeed need =
+      saddle_point() ? MemoryNeed() : contact_problem_memory(count, sides, frictional);
+  need.finite_elements = finite_element_memory(own_unknowns());
   MPI_Allreduce(MPI_IN_PLACE, &need.influence, 1, MPI_DOUBLE, MPI_MAX, comm_);
   MPI_Allreduce(MPI_IN_PLACE, &need.compliance, 1, MPI_DOUBLE, MPI_MAX, comm_);
+  MPI_Allreduce(MPI_IN_PLACE, &need.finite_elements, 1, MPI_DOUBLE, MPI_MAX, comm_);
   if (options_.progress && need.total() > (1 << 30))
     options_.progress(memory_line(need, within_reach_));
   if (need.total() <= within_reach_) return;
   trouble_.why = beyond_reach_message(need, within_reach_, fibres_[widest].id,
                                       stations_[widest].size(), saddle_point_possible());
   trouble_.beyond_reach = true;
+  trouble_.fibres_beyond_reach = need.finite_elements > within_reach_;
+}
+
+// The unknowns of this process's fibres once meshed: four fields, each with a node per vertex and
+// degree − 1 more per element.
+double ReferenceSolver::own_unknowns() const {
+  if (std::none_of(owned_.begin(), owned_.end(), [](char o) { return o != 0; })) return 0.0;
+  MeshOptions mesh = mesh_options();
+  mesh.fibres = owned_;
+  const double elements = static_cast<double>(mesh_elements(scene_, mesh));
+  double fibres = 0.0;
+  for (char o : owned_) fibres += o ? 1.0 : 0.0;
+  return 4.0 * (options_.degree * elements + fibres);
 }
 
 MeshOptions ReferenceSolver::mesh_options() const {

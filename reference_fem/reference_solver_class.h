@@ -88,6 +88,7 @@ class ReferenceSolver {
   // Meshing and detection (reference_solver.cc).
   void collect_stations();
   void check_memory_reach();
+  double own_unknowns() const;
   MeshOptions mesh_options() const;
   void deform();
   void displacements_at_contacts(std::vector<Eigen::Vector3d>& u_a,

@@ -1,4 +1,5 @@
-// What the reference's contact problem would hold in memory, counted before it is assembled.
+// What the reference would hold in memory — its contact problem and its finite elements — counted
+// before either is made.
 
 #include "memory_reach.h"
 
@@ -6,6 +7,9 @@
 #include <unistd.h>
 
 #include <Eigen/SparseCore>
+#include <string>
+
+#include "reference_solver.h"
 
 namespace fibrecheck {
 namespace {
@@ -41,6 +45,25 @@ TEST(MemoryReach, SaysWhatItWouldNeedAgainstWhatThereIs) {
   const std::string frictionless = beyond_reach_message(need, 4.0 * (1 << 30), "A", 1000, true);
   EXPECT_NE(frictionless.find("--contact-assembly saddle_point"), std::string::npos)
       << frictionless;
+}
+
+// Finite elements beyond the machine: the 100 000-slice parallel fibres with elements 64 times
+// finer than the slices would take 2 × 6.4 million elements, about 100 million unknowns and some
+// 70 GB. The reference says so before it meshes anything (no unknowns), rather than exhausting
+// the machine in Gmsh or MUMPS.
+TEST(MemoryReach, FiniteElementsBeyondTheMachineAreNotMeshed) {
+  const double unknowns = 2 * 8 * 6.4e6;
+  if (finite_element_memory(unknowns) <= memory_within_reach(MPI_COMM_SELF))
+    GTEST_SKIP() << "this machine would hold these finite elements";
+  const Scene scene =
+      read_scene(std::string(FIBRECHECK_SCENES_DIR) + "/extreme/parallel_100000_slices.json");
+  ReferenceOptions options;
+  options.refine = 6;
+  const Result r = solve_reference(scene, options);
+  EXPECT_EQ(r.status, Status::beyond_reach) << r.message;
+  EXPECT_NE(r.message.find("finite elements"), std::string::npos) << r.message;
+  ASSERT_TRUE(r.finite_elements.has_value());
+  EXPECT_EQ(r.finite_elements->unknowns, 0);
 }
 
 }  // namespace
