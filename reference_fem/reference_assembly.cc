@@ -24,8 +24,8 @@ void ReferenceSolver::assemble_system() {
 
 // The displacements u0_ at every station under the scene's loads, and the influence matrices G_f
 // (mm/N, the same in both bending planes; packed by g_offset_), which the function returns. Each
-// process fills in its own fibres; where the compliance is not shared, the sums give
-// every process all of them. Every process takes the same branch after a non-finite solution.
+// process fills in its own fibres; where the compliance is not shared, the sums give every process
+// all of them. Every process takes the same branch after a non-finite solution.
 std::vector<double> ReferenceSolver::loads_and_influence() {
   u0_.assign(3 * offset_.back(), 0.0);
   std::vector<double> G(saddle_point() ? 0 : g_offset_.back(), 0.0);
@@ -69,8 +69,8 @@ std::vector<double> ReferenceSolver::loads_and_influence() {
 
 // The overlaps d0_ under the scene's loads and W_jk = Σ_f α_j α_k G_f(j, k) n_j⊥·n_k⊥ over the
 // fibres both contacts act on, ⊥ the part across the fibre (mm/N); shared, the sum over this
-// process's fibres. Returns each fibre's contact
-// sides, from which the frictional blocks are assembled alike.
+// process's fibres. Returns each fibre's contact sides, from which the frictional blocks are
+// assembled alike.
 std::vector<std::vector<ReferenceSolver::ContactSide>> ReferenceSolver::assemble_compliance(
     const std::vector<double>& G) {
   const Eigen::Index n = static_cast<Eigen::Index>(contacts_.size());
