@@ -34,8 +34,8 @@ struct FibreStations {
 /// the iterative solver's detection, so both solvers see the same contacts).
 std::vector<FibreStations> mesh_stations(const Scene& scene, const MeshOptions& options);
 
-/// The elements write_mesh makes on the fibres `options.fibres` marks (all when it is empty), as
-/// the memory a mesh will take can be known before it is made.
+/// The elements write_mesh makes on the fibres `options.fibres` marks (all when it is empty), so
+/// that the memory a mesh will take is known before it is made.
 long mesh_elements(const Scene& scene, const MeshOptions& options);
 
 /// Meshes every fibre's chord as a 1-D curve with Gmsh — nodes at every station, refined near
