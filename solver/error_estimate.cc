@@ -4,9 +4,11 @@
 #include <chrono>
 #include <cmath>
 #include <map>
+#include <optional>
 #include <tuple>
 
 #include "compliance_operator.h"
+#include "coulomb_answer.h"
 #include "fibre_stiffness.h"
 #include "projected_cg.h"
 #include "superposition.h"
@@ -145,27 +147,42 @@ double pair_force_error(const std::vector<Contact>& contacts, const Eigen::Vecto
   return worst;
 }
 
-/// The largest deflection difference over the largest deflection, at the result's samples.
-double deflection_error(const Scene& scene, const Superposition& all,
+/// The largest deflection difference over the largest deflection, at the result's samples: the
+/// state's fibres on `beams`, the answer's on `answer_beams` (its crossings where it moved them).
+double deflection_error(const Scene& scene, const Superposition& beams,
                         const std::vector<Contact>& contacts, const Eigen::VectorXd& P,
-                        const std::vector<Contact>& answer, const Eigen::VectorXd& exact) {
+                        const Superposition& answer_beams, const std::vector<Contact>& answer,
+                        const Eigen::VectorXd& exact) {
   const int samples = scene.output.samples;
   std::vector<double> s(samples);
   for (int j = 0; j < samples; ++j) s[j] = static_cast<double>(j) / (samples - 1);
-  const std::vector<Eigen::Vector3d> f = forces_on_a(answer, exact);
-  std::vector<Eigen::Vector3d> df = forces_on_a(contacts, P);
-  for (std::size_t k = 0; k < df.size(); ++k) df[k] = f[k] - df[k];
+  const std::vector<Eigen::Vector3d> f = forces_on_a(answer, exact), g = forces_on_a(contacts, P);
   double largest = 0.0, difference = 0.0;
-  std::vector<Eigen::Vector3d> u, du;
+  std::vector<Eigen::Vector3d> u, v;
   for (int fibre = 0; fibre < static_cast<int>(scene.fibres.size()); ++fibre) {
-    all.fibre_field(fibre, f, true, s, u);
-    all.fibre_field(fibre, df, false, s, du);
+    answer_beams.fibre_field(fibre, f, true, s, u);
+    beams.fibre_field(fibre, g, true, s, v);
     for (int j = 0; j < samples; ++j) {
       largest = std::max(largest, u[j].norm());
-      difference = std::max(difference, du[j].norm());
+      difference = std::max(difference, (u[j] - v[j]).norm());
     }
   }
   return largest > 0.0 ? difference / largest : 0.0;
+}
+
+/// Deformed contact: each crossing steps towards the closest points of the fibres deformed by the
+/// forces `f` on `beams` (as the solver's crossings follow them, Eqs. 4.16–4.24 on the tangent
+/// lines where it acts). True when one moved.
+bool step_crossings(const ContactDetector& detector, const Superposition& beams,
+                    const std::vector<Eigen::Vector3d>& f, std::vector<Contact>& contacts) {
+  if (!detector.point_search()) return false;
+  const std::vector<int> crossing = fibres_with_crossings(contacts);
+  if (crossing.empty()) return false;
+  std::vector<std::vector<Eigen::Vector3d>> grid_u(detector.geometry().fibres().size());
+  for (int fibre : crossing) beams.fibre_field(fibre, f, true, detector.grid(), grid_u[fibre]);
+  std::vector<Eigen::Vector3d> u_a, u_b;
+  beams.contact_displacements(contacts, f, true, u_a, u_b);
+  return detector.follow_crossings(grid_u, contacts, u_a, u_b);
 }
 
 /// The answer of the problem linearised about the contacts' normals, from forces `P` with overlaps
@@ -205,9 +222,10 @@ Eigen::VectorXd linearised_answer(const Scene& scene, const std::vector<Fibre>& 
 }  // namespace
 
 ErrorEstimate estimate_iteration_error(const Scene& scene, const std::vector<Fibre>& fibres,
-                                       const ContactGeometry& geometry,
+                                       const ContactDetector& detector,
                                        const std::vector<Contact>& contacts,
                                        std::vector<Contact>* answer_out) {
+  const ContactGeometry& geometry = detector.geometry();
   const auto start = std::chrono::steady_clock::now();
   ErrorEstimate estimate;
   const Eigen::Index n = static_cast<Eigen::Index>(contacts.size());
@@ -218,27 +236,63 @@ ErrorEstimate estimate_iteration_error(const Scene& scene, const std::vector<Fib
   for (Eigen::Index k = 0; k < n; ++k) P[k] = contacts[static_cast<std::size_t>(k)].force;
   double energy = 0.0, exact_energy = 0.0;
   const Eigen::VectorXd d = overlaps(all, geometry, contacts, P, &energy);
-  Eigen::VectorXd exact = linearised_answer(scene, fibres, all, geometry, contacts, P, d, estimate);
-  // The deformed contact: the answer's normals point between its own displaced centres, so the
-  // normals turn to those of the corrected state and the problem linearised about them is solved
-  // again from there, until they stop turning.
   std::vector<Contact> answer = contacts;
+  const double mu =
+      scene.contact.friction_model == FrictionModel::coulomb ? scene.contact.friction : 0.0;
+  // With Coulomb friction the frictions are unknowns too (coulomb_answer); without, under the
+  // seed's friction rule, or where the frictional Newton steps do not settle (from a rough state
+  // the contacts that slip can wedge the fibres, and its linear systems are then near singular),
+  // they are held and the normal forces alone solve the residual equation.
+  auto solve = [&](const Superposition& beams, const Eigen::VectorXd& from,
+                   const Eigen::VectorXd& left) -> Eigen::VectorXd {
+    if (!(mu > 0.0))
+      return linearised_answer(scene, fibres, beams, geometry, answer, from, left, estimate);
+    const std::vector<Contact> held = answer;
+    for (Eigen::Index k = 0; k < n; ++k) answer[static_cast<std::size_t>(k)].force = from[k];
+    const CoulombAnswer coulomb =
+        coulomb_answer(fibres, beams, geometry, mu, kProblemShare, answer);
+    estimate.passes += coulomb.steps;
+    if (!coulomb.settled) {
+      answer = held;
+      estimate.settled = false;
+      return linearised_answer(scene, fibres, beams, geometry, answer, from, left, estimate);
+    }
+    Eigen::VectorXd forces(n);
+    for (Eigen::Index k = 0; k < n; ++k) forces[k] = answer[static_cast<std::size_t>(k)].force;
+    return forces;
+  };
+  Eigen::VectorXd exact = solve(all, P, d);
+  // The deformed contact: the answer's normals point between its own displaced centres, and its
+  // crossings act at the closest points of its own deformed fibres, so the crossings step there
+  // and the normals turn to those of the corrected state, and the problem linearised about them is
+  // solved again from there, until neither moves.
+  std::optional<Superposition> moved;
+  const Superposition* beams = &all;
   for (int pass = 0; geometry.deformed() && pass < kGeometricPasses; ++pass) {
+    const std::vector<Eigen::Vector3d> f = forces_on_a(answer, exact);
+    const bool stepped = step_crossings(detector, *beams, f, answer);
+    if (stepped && !moved) {
+      moved.emplace(fibres, scene);
+      moved->attach(answer);
+      beams = &*moved;
+    } else if (stepped) {
+      moved->move_points(answer, fibres_with_crossings(answer));
+    }
     std::vector<Eigen::Vector3d> u_a, u_b;
-    all.contact_displacements(answer, forces_on_a(answer, exact), true, u_a, u_b);
+    beams->contact_displacements(answer, f, true, u_a, u_b);
     double turned = 0.0;
     for (std::size_t k = 0; k < answer.size(); ++k) {
       const Eigen::Vector3d before = answer[k].normal;
       geometry.follow(answer[k], u_a[k], u_b[k]);
       turned = std::max(turned, (answer[k].normal - before).norm());
     }
-    if (turned < kUnturned) break;
-    const Eigen::VectorXd d_turned = overlaps(all, geometry, answer, exact, nullptr);
-    exact = linearised_answer(scene, fibres, all, geometry, answer, exact, d_turned, estimate);
+    if (turned < kUnturned && !stepped) break;
+    const Eigen::VectorXd d_turned = overlaps(*beams, geometry, answer, exact, nullptr);
+    exact = solve(*beams, exact, d_turned);
   }
-  overlaps(all, geometry, answer, exact, &exact_energy);
+  overlaps(*beams, geometry, answer, exact, &exact_energy);
   estimate.force = pair_force_error(contacts, P, answer, exact);
-  estimate.deflection = deflection_error(scene, all, contacts, P, answer, exact);
+  estimate.deflection = deflection_error(scene, all, contacts, P, *beams, answer, exact);
   estimate.energy =
       exact_energy != 0.0 ? std::fabs(energy - exact_energy) / std::fabs(exact_energy) : 0.0;
   if (answer_out) {

@@ -4,7 +4,7 @@
 #include <vector>
 
 #include "contact.h"
-#include "contact_geometry.h"
+#include "contact_detection.h"
 #include "fibre.h"
 #include "result.h"
 #include "scene.h"
@@ -26,14 +26,23 @@ namespace fibrecheck {
 /// solved from the final state instead (projected conjugate gradients, as rule cg, to a thousandth
 /// of the final residual), so that what those contacts add is in the estimate too.
 ///
-/// It assumes: the candidate list holds every contact of the answer; the normals (and crossing
-/// places) of the state are those of the answer, so that under the deformed contact it estimates
-/// the error of the last linearised problem; friction forces are held at their final values (the
-/// normal problem's error only).
-/// With `answer`, also returns the contacts as the estimate's answer has them (forces, and under
-/// the deformed contact normals and tangents).
+/// Under the deformed contact the answer's crossings act at the closest points of its own deformed
+/// fibres and its normals point between its own displaced centres: the crossings step there and the
+/// normals turn, and the problem linearised about them is solved again, a few times, until neither
+/// moves.
+///
+/// With Coulomb friction the frictions are unknowns as well (coulomb_answer: Newton steps of the
+/// frictional problem); under the seed's friction rule, which solves no problem of its own, they
+/// are held at their final values.
+///
+/// It assumes: the candidate list holds every contact of the answer; in a load path, the step's
+/// slip origins are the answer's, so that it estimates the error of the step's own problem and not
+/// what earlier steps' errors leave in the origins.
+///
+/// With `answer`, also returns the contacts as the estimate's answer has them (forces and
+/// frictions, and under the deformed contact places, normals and tangents).
 ErrorEstimate estimate_iteration_error(const Scene& scene, const std::vector<Fibre>& fibres,
-                                       const ContactGeometry& geometry,
+                                       const ContactDetector& detector,
                                        const std::vector<Contact>& contacts,
                                        std::vector<Contact>* answer = nullptr);
 

@@ -285,14 +285,8 @@ void IterativeSolver::evaluate(bool follow_geometry) {
 // (Eqs. 4.16–4.24 on their tangent lines where it acts), and its load point with it, where they
 // come closer by more than a tenth of t_d.
 void IterativeSolver::follow_crossings() {
-  crossing_fibres_.clear();
-  for (const Contact& c : state_.contacts)
-    if (c.kind == ContactKind::point)
-      crossing_fibres_.push_back(c.a), crossing_fibres_.push_back(c.b);
+  crossing_fibres_ = fibres_with_crossings(state_.contacts);
   if (crossing_fibres_.empty()) return;
-  std::sort(crossing_fibres_.begin(), crossing_fibres_.end());
-  crossing_fibres_.erase(std::unique(crossing_fibres_.begin(), crossing_fibres_.end()),
-                         crossing_fibres_.end());
   crossing_grid_u_.resize(fibres_.size());
   for (int f : crossing_fibres_)
     superposition_.fibre_field(f, state_.force_on_a, true, detector_.grid(), crossing_grid_u_[f]);
@@ -331,27 +325,26 @@ bool IterativeSolver::just_touching(double t) const {
 
 // The contact criterion met: with a force tolerance the run also asks its own error estimate.
 // Where the estimated force error is still above the tolerance, the state takes the estimate's
-// answer of its linearised problem (one Newton step of the contact problem on the pushing set)
-// and the iteration goes on from there (with Coulomb friction the radii follow: every contact on
-// its circle slips with μ times its new force; the seed's friction rule takes no correction, its
-// friction being the last resultant's); after kMaxCorrections of them t_d shrinks instead, by the
-// factor the force error must (forces converge about in proportion to the overlaps left), down
-// to a millionth of the scene's t_d, where the run stops with a warning. With Coulomb friction
-// t_d is not made smaller: the estimate holds the friction forces fixed, so its figure is not the
-// frictional problem's error and does not fall with t_d, and a smaller t_d asks slips at contacts
-// beside the supports for what the forces cannot give them.
+// answer of its linearised problem (Newton steps of the contact problem, with Coulomb friction of
+// the frictional one) and the iteration goes on from there (with Coulomb friction the radii
+// follow: every contact on its circle slips with μ times its new force; the seed's friction rule
+// takes no correction, its friction being the last resultant's). An answer the estimate did not
+// settle is not taken. After kMaxCorrections of them, or instead of one not taken, t_d shrinks, by
+// the factor the force error must (forces converge about in proportion to the overlaps left),
+// down to a millionth of the scene's t_d, where the run stops with a warning.
 std::optional<Termination> IterativeSolver::forces_accurate_enough() {
   const double wanted = options_.force_tolerance;
   if (!(wanted > 0.0)) return Termination{Status::converged, Criterion::contact, ""};
   working_set_.leave(state_);
   std::vector<Contact> answer;
-  estimate_ =
-      estimate_iteration_error(scene_, fibres_, detector_.geometry(), state_.contacts, &answer);
+  estimate_ = estimate_iteration_error(scene_, fibres_, detector_, state_.contacts, &answer);
   last_force_estimate_ = estimate_->force;
   if (estimate_->force < wanted) return Termination{Status::converged, Criterion::force, ""};
-  if (corrections_ < kMaxCorrections && !seed_friction_) {
+  if (corrections_ < kMaxCorrections && !seed_friction_ && estimate_->settled) {
     ++corrections_;
     state_.contacts = std::move(answer);
+    if (detector_.geometry().deformed())
+      superposition_.move_points(state_.contacts, fibres_with_crossings(state_.contacts));
     if (coulomb_) tresca_.onto_coulomb_cone(state_);
     state_.forces_gathered = false;
     const Eigen::Index n = static_cast<Eigen::Index>(state_.contacts.size());
@@ -364,13 +357,12 @@ std::optional<Termination> IterativeSolver::forces_accurate_enough() {
     divergence_.reset();
     sequence_starts_afresh();
   } else {
-    const double floor = (coulomb_ ? 1.0 : 1e-6) * options_.overlap_tolerance;
+    const double floor = 1e-6 * options_.overlap_tolerance;
     if (overlap_tolerance_ <= floor) {
       std::ostringstream out;
       out.precision(3);
       out << "the estimated force error " << estimate_->force << " is above force_tolerance "
           << wanted << " with t_d made " << overlap_tolerance_ << " mm";
-      if (coulomb_) out << " (with Coulomb friction t_d is kept: the estimate holds the friction)";
       warnings_.push_back(out.str());
       return Termination{Status::converged, Criterion::contact, ""};
     }
@@ -674,8 +666,7 @@ Result IterativeSolver::finish(const Termination& end, long iterations, Clock::t
   if (estimate_)
     r.error_estimate = estimate_;
   else if (end.criterion != Criterion::non_finite && end.status != Status::unresolvable)
-    r.error_estimate =
-        estimate_iteration_error(scene_, fibres_, detector_.geometry(), state_.contacts);
+    r.error_estimate = estimate_iteration_error(scene_, fibres_, detector_, state_.contacts);
   r.wall_time_s = seconds_since(start);
   return r;
 }

@@ -1,5 +1,7 @@
 #include "contact.h"
 
+#include <algorithm>
+
 namespace fibrecheck {
 
 const char* to_string(ContactKind kind) {
@@ -12,6 +14,15 @@ const char* to_string(ContactKind kind) {
       return "wall";
   }
   return "?";
+}
+
+std::vector<int> fibres_with_crossings(const std::vector<Contact>& contacts) {
+  std::vector<int> fibres;
+  for (const Contact& c : contacts)
+    if (c.kind == ContactKind::point) fibres.push_back(c.a), fibres.push_back(c.b);
+  std::sort(fibres.begin(), fibres.end());
+  fibres.erase(std::unique(fibres.begin(), fibres.end()), fibres.end());
+  return fibres;
 }
 
 }  // namespace fibrecheck

@@ -2,6 +2,7 @@
 
 #include <Eigen/Core>
 #include <cstdint>
+#include <vector>
 
 namespace fibrecheck {
 
@@ -72,5 +73,8 @@ struct Contact {
            (static_cast<std::uint64_t>(b) << 21) ^ static_cast<std::uint64_t>(slice + 1);
   }
 };
+
+/// The fibres that crossings (point contacts) act on, sorted, each once.
+std::vector<int> fibres_with_crossings(const std::vector<Contact>& contacts);
 
 }  // namespace fibrecheck

@@ -1,0 +1,288 @@
+#include "coulomb_answer.h"
+
+#include <Eigen/Core>
+#include <algorithm>
+#include <cmath>
+
+#include "compliance_operator.h"
+#include "fibre_stiffness.h"
+
+namespace fibrecheck {
+
+namespace {
+
+constexpr int kNewtonSteps = 8;
+constexpr int kHalvings = 10;
+constexpr int kRestart = 30;
+constexpr int kMaxProducts = 500;
+constexpr double kReduction = 1e-10;
+/// A friction this close to μP lies on the edge of its disk: it slips.
+constexpr double kOnTheEdge = 1e-9;
+
+/// The second tangential direction of a crossing.
+Eigen::Vector3d second_tangent(const Contact& c) {
+  return c.normal.cross(c.tangent);
+}
+
+/// What a state leaves: each contact's overlap along its normal and its slip since the step began.
+struct Residual {
+  Eigen::VectorXd overlap;
+  std::vector<Eigen::Vector3d> slip;
+};
+
+Residual measure(const Superposition& beams, const ContactGeometry& geometry,
+                 const std::vector<Contact>& contacts) {
+  const std::size_t n = contacts.size();
+  std::vector<Eigen::Vector3d> f(n), u_a, u_b;
+  for (std::size_t k = 0; k < n; ++k) f[k] = contacts[k].force_on_a();
+  beams.contact_displacements(contacts, f, true, u_a, u_b);
+  Residual r{Eigen::VectorXd(static_cast<Eigen::Index>(n)), std::vector<Eigen::Vector3d>(n)};
+  for (std::size_t k = 0; k < n; ++k) {
+    const Contact& c = contacts[k];
+    r.overlap[static_cast<Eigen::Index>(k)] = geometry.overlap_along_normal(c, u_a[k], u_b[k]);
+    r.slip[k] = c.tangential(c.relative(u_a[k], u_b[k]) - c.origin);
+  }
+  return r;
+}
+
+/// Each contact's state: whether it pushes, whether it sticks, and where it does not, the
+/// direction its friction slides along (zero where it carries none).
+struct States {
+  std::vector<unsigned char> pushes, sticks;
+  std::vector<Eigen::Vector3d> direction;
+};
+
+States read_states(const std::vector<Contact>& contacts, const Residual& r, double mu) {
+  const std::size_t n = contacts.size();
+  States s{std::vector<unsigned char>(n, 0), std::vector<unsigned char>(n, 0),
+           std::vector<Eigen::Vector3d>(n, Eigen::Vector3d::Zero())};
+  for (std::size_t k = 0; k < n; ++k) {
+    const Contact& c = contacts[k];
+    s.pushes[k] = c.force > 0.0 || r.overlap[static_cast<Eigen::Index>(k)] > 0.0;
+    if (!s.pushes[k] || c.tangents == 0 || !(mu > 0.0)) continue;
+    const double size = c.friction.norm(), radius = mu * c.force;
+    if (size < (1.0 - kOnTheEdge) * radius) {
+      s.sticks[k] = 1;
+    } else if (size > 0.0) {
+      s.direction[k] = c.friction / size;
+    } else if (r.slip[k].norm() > 0.0) {
+      s.direction[k] = r.slip[k].normalized();
+    } else {
+      s.sticks[k] = 1;
+    }
+  }
+  return s;
+}
+
+/// The largest overlap at a pushing contact, overlap at a free one, slip at a sticking one, and
+/// slip off the friction's direction at a slipping one (mm).
+double left_of(const Residual& r, const States& s) {
+  double left = 0.0;
+  for (std::size_t k = 0; k < s.pushes.size(); ++k) {
+    const double d = r.overlap[static_cast<Eigen::Index>(k)];
+    left = std::max(left, s.pushes[k] ? std::fabs(d) : std::max(d, 0.0));
+    if (s.sticks[k]) left = std::max(left, r.slip[k].norm());
+    if (s.direction[k].squaredNorm() > 0.0) {
+      const double along = r.slip[k].dot(s.direction[k]);
+      left = std::max(left, (r.slip[k] - along * s.direction[k]).norm() + std::max(0.0, -along));
+    }
+  }
+  return left;
+}
+
+/// The contacts with each friction component turned into a contact of its own, pushing along ∓t
+/// (a friction F along t on A is a normal force F along −t between two fibres, +t at a wall), in
+/// the order of the frictional operator's components: what the fibres' stiffness preconditions.
+std::vector<Contact> turned_into_normals(const std::vector<Contact>& contacts) {
+  std::vector<Contact> turned;
+  turned.reserve(3 * contacts.size());
+  for (const Contact& c : contacts) {
+    turned.push_back(c);
+    const double side = c.kind == ContactKind::wall ? 1.0 : -1.0;
+    for (const Eigen::Vector3d& t : {c.tangent, second_tangent(c)}) {
+      Contact along = c;
+      if (c.tangents > 0) along.normal = side * t;
+      turned.push_back(along);
+    }
+  }
+  return turned;
+}
+
+/// x with A·x = b by restarted GMRES, right-preconditioned by `precondition` (Saad, Iterative
+/// Methods for Sparse Linear Systems, §9.3.2), to a residual of kReduction·‖b‖.
+template <class Apply, class Precondition>
+Eigen::VectorXd gmres(const Apply& apply, const Precondition& precondition,
+                      const Eigen::VectorXd& b) {
+  const Eigen::Index n = b.size();
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(n), r = b, z(n), w(n);
+  const double stop = kReduction * b.norm();
+  int products = 0;
+  while (products < kMaxProducts && r.norm() > stop) {
+    const double beta = r.norm();
+    std::vector<Eigen::VectorXd> V{r / beta};
+    Eigen::MatrixXd H = Eigen::MatrixXd::Zero(kRestart + 1, kRestart);
+    Eigen::VectorXd g = Eigen::VectorXd::Zero(kRestart + 1), cs(kRestart), sn(kRestart);
+    g[0] = beta;
+    int j = 0;
+    for (; j < kRestart && products < kMaxProducts; ++j) {
+      precondition(V[j], z);
+      apply(z, w);
+      ++products;
+      for (int i = 0; i <= j; ++i) {
+        H(i, j) = w.dot(V[i]);
+        w -= H(i, j) * V[i];
+      }
+      H(j + 1, j) = w.norm();
+      for (int i = 0; i < j; ++i) {
+        const double h = cs[i] * H(i, j) + sn[i] * H(i + 1, j);
+        H(i + 1, j) = -sn[i] * H(i, j) + cs[i] * H(i + 1, j);
+        H(i, j) = h;
+      }
+      const double rho = std::hypot(H(j, j), H(j + 1, j));
+      if (!(rho > 0.0)) break;
+      cs[j] = H(j, j) / rho;
+      sn[j] = H(j + 1, j) / rho;
+      H(j, j) = rho;
+      H(j + 1, j) = 0.0;
+      g[j + 1] = -sn[j] * g[j];
+      g[j] *= cs[j];
+      const bool done = std::fabs(g[j + 1]) <= stop || !(w.norm() > 0.0);
+      if (!done) V.push_back(w / w.norm());
+      if (done) {
+        ++j;
+        break;
+      }
+    }
+    const Eigen::VectorXd y = H.topLeftCorner(j, j).triangularView<Eigen::Upper>().solve(g.head(j));
+    w.setZero();
+    for (int i = 0; i < j; ++i) w += y[i] * V[static_cast<std::size_t>(i)];
+    precondition(w, z);
+    x += z;
+    apply(x, w);
+    ++products;
+    r = b - w;
+  }
+  return x;
+}
+
+/// One Newton step with the contacts' states held: the normal forces of the pushing contacts and
+/// the frictions of the sticking ones solve the overlaps and slips left, the slipping frictions
+/// follow their normal forces along their directions.
+void newton_step(const std::vector<Fibre>& fibres, const Superposition& beams,
+                 const std::vector<Contact>& turned, const Residual& r, const States& s, double mu,
+                 std::vector<Contact>& contacts) {
+  const std::size_t n = contacts.size();
+  const Eigen::Index m = static_cast<Eigen::Index>(3 * n);
+  std::vector<unsigned char> free(static_cast<std::size_t>(m), 0);
+  Eigen::VectorXd b = Eigen::VectorXd::Zero(m);
+  for (std::size_t k = 0; k < n; ++k) {
+    const Contact& c = contacts[k];
+    free[3 * k] = s.pushes[k];
+    if (s.pushes[k]) b[static_cast<Eigen::Index>(3 * k)] = r.overlap[static_cast<Eigen::Index>(k)];
+    if (!s.sticks[k]) continue;
+    free[3 * k + 1] = 1;
+    b[static_cast<Eigen::Index>(3 * k + 1)] = r.slip[k].dot(c.tangent);
+    if (c.tangents == 2) {
+      free[3 * k + 2] = 1;
+      b[static_cast<Eigen::Index>(3 * k + 2)] = r.slip[k].dot(second_tangent(c));
+    }
+  }
+  auto restrict = [&free](Eigen::VectorXd& v) {
+    for (Eigen::Index i = 0; i < v.size(); ++i)
+      if (!free[static_cast<std::size_t>(i)]) v[i] = 0.0;
+  };
+  // The slipping frictions' components for normal forces P + scale·δP: μ(P + δP)·e − F at
+  // scale 1, μ·δP·e at scale 0 with no P.
+  auto slipping = [&](const Eigen::VectorXd& x, double P_share, double F_share) {
+    Eigen::VectorXd out = x;
+    for (std::size_t k = 0; k < n; ++k) {
+      if (!(s.direction[k].squaredNorm() > 0.0)) continue;
+      const Contact& c = contacts[k];
+      const double P = P_share * c.force + x[static_cast<Eigen::Index>(3 * k)];
+      const Eigen::Vector3d change = mu * P * s.direction[k] - F_share * c.friction;
+      out[static_cast<Eigen::Index>(3 * k + 1)] = change.dot(c.tangent);
+      out[static_cast<Eigen::Index>(3 * k + 2)] =
+          c.tangents == 2 ? change.dot(second_tangent(c)) : 0.0;
+    }
+    return out;
+  };
+  const ComplianceOperator W(beams, contacts, false, true);
+  FibreStiffness stiffness(fibres);
+  stiffness.attach(turned);
+  Eigen::VectorXd q;
+  W.apply(slipping(Eigen::VectorXd::Zero(m), 1.0, 1.0), q);
+  restrict(q);
+  b -= q;
+  const Eigen::VectorXd x = gmres(
+      [&](const Eigen::VectorXd& v, Eigen::VectorXd& out) {
+        W.apply(slipping(v, 0.0, 0.0), out);
+        restrict(out);
+      },
+      [&](const Eigen::VectorXd& v, Eigen::VectorXd& out) { stiffness.apply(v, free, out); }, b);
+  const Eigen::VectorXd change = slipping(x, 1.0, 1.0);
+  for (std::size_t k = 0; k < n; ++k) {
+    Contact& c = contacts[k];
+    const Eigen::Index i = static_cast<Eigen::Index>(3 * k);
+    if (!s.pushes[k]) continue;
+    c.force = std::max(c.force + x[i], 0.0);
+    if (c.tangents > 0) c.friction += change[i + 1] * c.tangent + change[i + 2] * second_tangent(c);
+    c.friction = onto_coulomb_disk(c.tangential(c.friction), mu * c.force);
+  }
+}
+
+/// The state a share `alpha` of the way from `from` to `to`: forces and frictions in proportion,
+/// which keeps each friction within its disk, since both ends have theirs within.
+std::vector<Contact> part_of_the_way(const std::vector<Contact>& from,
+                                     const std::vector<Contact>& to, double alpha) {
+  std::vector<Contact> between = from;
+  for (std::size_t k = 0; k < between.size(); ++k) {
+    between[k].force += alpha * (to[k].force - from[k].force);
+    between[k].friction += alpha * (to[k].friction - from[k].friction);
+  }
+  return between;
+}
+
+}  // namespace
+
+CoulombAnswer coulomb_answer(const std::vector<Fibre>& fibres, const Superposition& beams,
+                             const ContactGeometry& geometry, double mu, double share,
+                             std::vector<Contact>& contacts) {
+  CoulombAnswer answer;
+  const std::vector<Contact> turned = turned_into_normals(contacts);
+  Residual r = measure(beams, geometry, contacts);
+  States s = read_states(contacts, r, mu);
+  double left = left_of(r, s);
+  const double wanted = share * std::max(left, 1e-300);
+  std::vector<Contact> best = contacts;
+  double least = left;
+  while (answer.steps < kNewtonSteps && left > wanted) {
+    std::vector<Contact> newton = contacts;
+    newton_step(fibres, beams, turned, r, s, mu, newton);
+    ++answer.steps;
+    Residual rn = measure(beams, geometry, newton);
+    States sn = read_states(newton, rn, mu);
+    double left_newton = left_of(rn, sn);
+    // A step that changes no contact's state and leaves more than the state did went too far
+    // along a direction the linearisation does not hold on: it is halved until it leaves less.
+    for (int halving = 1; !(left_newton < left) && sn.pushes == s.pushes && sn.sticks == s.sticks &&
+                          halving <= kHalvings;
+         ++halving) {
+      std::vector<Contact> trial = part_of_the_way(contacts, newton, std::ldexp(1.0, -halving));
+      rn = measure(beams, geometry, trial);
+      sn = read_states(trial, rn, mu);
+      left_newton = left_of(rn, sn);
+      if (left_newton < left) newton = std::move(trial);
+    }
+    contacts = std::move(newton);
+    r = std::move(rn);
+    s = std::move(sn);
+    left = left_newton;
+    if (left < least) best = contacts, least = left;
+  }
+  contacts = std::move(best);
+  left = least;
+  answer.settled = left <= wanted;
+  return answer;
+}
+
+}  // namespace fibrecheck
