@@ -106,6 +106,7 @@ class IterativeSolver {
   void record(long iteration, long before);
   bool just_touching(double t) const;
   std::optional<Termination> forces_accurate_enough();
+  void take_the_answer(std::vector<Contact> answer);
   bool must_measure_again();
   void sequence_starts_afresh();
   std::optional<Termination> diverging(long iteration, double residual);
@@ -323,6 +324,26 @@ bool IterativeSolver::just_touching(double t) const {
   return residuals_.overlap < t && residuals_.gap_force < t && friction_settled;
 }
 
+// The state takes the estimate's answer (forces, frictions, and on the deformed fibres the
+// crossings' places and the normals), with Coulomb friction on the cone, and the rule starts from
+// it afresh.
+void IterativeSolver::take_the_answer(std::vector<Contact> answer) {
+  state_.contacts = std::move(answer);
+  if (detector_.geometry().deformed())
+    superposition_.move_points(state_.contacts, fibres_with_crossings(state_.contacts));
+  if (coulomb_) tresca_.onto_coulomb_cone(state_);
+  state_.forces_gathered = false;
+  const Eigen::Index n = static_cast<Eigen::Index>(state_.contacts.size());
+  if (state_.iterate.size() == n) {
+    for (Eigen::Index k = 0; k < n; ++k)
+      state_.iterate[k] = state_.contacts[static_cast<std::size_t>(k)].force;
+    state_.previous = state_.iterate;
+  }
+  rule_->restart(state_);
+  divergence_.reset();
+  sequence_starts_afresh();
+}
+
 // The contact criterion met: with a force tolerance the run also asks its own error estimate.
 // Where the estimated force error is still above the tolerance, the state takes the estimate's
 // answer of its linearised problem (Newton steps of the contact problem, with Coulomb friction of
@@ -342,20 +363,7 @@ std::optional<Termination> IterativeSolver::forces_accurate_enough() {
   if (estimate_->force < wanted) return Termination{Status::converged, Criterion::force, ""};
   if (corrections_ < kMaxCorrections && !seed_friction_ && estimate_->settled) {
     ++corrections_;
-    state_.contacts = std::move(answer);
-    if (detector_.geometry().deformed())
-      superposition_.move_points(state_.contacts, fibres_with_crossings(state_.contacts));
-    if (coulomb_) tresca_.onto_coulomb_cone(state_);
-    state_.forces_gathered = false;
-    const Eigen::Index n = static_cast<Eigen::Index>(state_.contacts.size());
-    if (state_.iterate.size() == n) {
-      for (Eigen::Index k = 0; k < n; ++k)
-        state_.iterate[k] = state_.contacts[static_cast<std::size_t>(k)].force;
-      state_.previous = state_.iterate;
-    }
-    rule_->restart(state_);
-    divergence_.reset();
-    sequence_starts_afresh();
+    take_the_answer(std::move(answer));
   } else {
     const double floor = 1e-6 * options_.overlap_tolerance;
     if (overlap_tolerance_ <= floor) {
