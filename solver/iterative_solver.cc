@@ -259,6 +259,10 @@ Result IterativeSolver::run() {
     iteration += work;
   }
   if (end.status == Status::diverged) restore_best();
+  if (end.status == Status::max_iterations && overlap_tolerance_ < options_.overlap_tolerance) {
+    evaluate(true);
+    end = stalled_within_scene_tolerance(end);
+  }
   if (end.status == Status::max_iterations) {
     iteration = options_.max_iterations;
     end.message = capped_message();
@@ -457,20 +461,23 @@ bool IterativeSolver::follows_the_fibres_now(long iteration, double residual) {
   return true;
 }
 
-// A run whose t_d was made smaller to meet force_tolerance (frictionless, or the seed's friction
-// rule) and that stalls there (a contact next to a support, whose overlap the forces barely move,
-// can hold the residual above the smaller t_d) still meets the scene's own contact criterion: it
-// is converged, with a warning that the force tolerance was not reached.
+// A run whose t_d was made smaller to meet force_tolerance and that stalls there, or runs out of
+// iterations there (a contact next to a support, whose overlap the forces barely move, can hold
+// the residual above the smaller t_d; with Coulomb friction, contacts wedged against each other
+// can slow the iteration to a crawl), still meets the scene's own contact criterion: it is
+// converged, with a warning that the force tolerance was not reached.
 Termination IterativeSolver::stalled_within_scene_tolerance(const Termination& verdict) {
   const double t = options_.overlap_tolerance;
-  if (verdict.criterion != Criterion::oscillation || !(overlap_tolerance_ < t) || !just_touching(t))
-    return verdict;
+  const bool stalled =
+      verdict.criterion == Criterion::oscillation || verdict.criterion == Criterion::max_iterations;
+  if (!stalled || !(overlap_tolerance_ < t) || !just_touching(t)) return verdict;
   std::ostringstream out;
   out.precision(3);
-  out << "force_tolerance " << options_.force_tolerance << " not reached: the iteration stalled "
-      << "at a residual of " << watched_residual() << " mm, within the scene's t_d but above the "
-      << overlap_tolerance_ << " mm the estimated force error " << last_force_estimate_
-      << " asked for";
+  out << "force_tolerance " << options_.force_tolerance << " not reached: the iteration "
+      << (verdict.criterion == Criterion::oscillation ? "stalled" : "ran out of iterations")
+      << " with t_d made " << overlap_tolerance_ << " mm for the estimated force error "
+      << last_force_estimate_ << ", its residual " << watched_residual()
+      << " mm within the scene's t_d";
   warnings_.push_back(out.str());
   return Termination{Status::converged, Criterion::contact, ""};
 }

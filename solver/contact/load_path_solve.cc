@@ -1,5 +1,8 @@
 #include "load_path_solve.h"
 
+#include <algorithm>
+#include <string>
+
 namespace fibrecheck {
 
 Result solve_load_path(const Scene& scene,
@@ -7,6 +10,7 @@ Result solve_load_path(const Scene& scene,
   if (scene.steps.empty()) return solve_step(scene, nullptr);
   Result last;
   std::vector<StepResult> steps;
+  std::vector<std::string> warnings, seen;
   long iterations = 0;
   double seconds = 0.0;
   for (std::size_t i = 0; i < scene.steps.size(); ++i) {
@@ -15,6 +19,11 @@ Result solve_load_path(const Scene& scene,
     steps.push_back(step_result(stepped, scene.steps[i], r));
     iterations += r.iterations;
     seconds += r.wall_time_s;
+    const std::string step =
+        "step " + std::to_string(i + 1) + " of " + std::to_string(scene.steps.size()) + ": ";
+    for (const std::string& w : r.warnings)
+      if (std::find(seen.begin(), seen.end(), w) == seen.end())
+        seen.push_back(w), warnings.push_back(step + w);
     last = std::move(r);
     if (last.status != Status::converged) {
       last.message = "step " + std::to_string(i + 1) + " of " + std::to_string(scene.steps.size()) +
@@ -23,6 +32,7 @@ Result solve_load_path(const Scene& scene,
     }
   }
   last.steps = std::move(steps);
+  last.warnings = std::move(warnings);
   last.iterations = iterations;
   last.wall_time_s = seconds;
   return last;

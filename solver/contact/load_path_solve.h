@@ -12,7 +12,8 @@ namespace fibrecheck {
 /// `solve_step`, which receives the previous step's result (none for the first) to start from.
 /// The returned result is the last step's, with `steps` holding one entry per finished step; a
 /// step that does not converge ends the path with its status, the finished steps kept. Iterations
-/// and wall time add up over the steps. A scene without steps is solved once, as it stands.
+/// and wall time add up over the steps, and the warnings gather, each the first time a step gives
+/// it, named by that step. A scene without steps is solved once, as it stands.
 Result solve_load_path(const Scene& scene,
                        const std::function<Result(const Scene&, const Result*)>& solve_step);
 

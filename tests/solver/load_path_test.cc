@@ -5,7 +5,11 @@
 
 #include <gtest/gtest.h>
 
+#include <string>
+#include <vector>
+
 #include "iterative_solver.h"
+#include "load_path_solve.h"
 #include "test_scenes.h"
 
 namespace fibrecheck {
@@ -82,6 +86,27 @@ TEST(LoadPath, AStepThatFailsEndsThePath) {
   EXPECT_EQ(r.steps[2].status, Status::unresolvable);
   EXPECT_NE(r.message.find("step 3 of 4"), std::string::npos) << r.message;
   EXPECT_NE(r.message.find("pinned supports"), std::string::npos) << r.message;
+}
+
+// A warning an earlier step gives stays in the result, named by the first step that gave it, and
+// is not repeated for the steps that give it again.
+TEST(LoadPath, WarningsOfEveryStepAreKept) {
+  Scene s;
+  s.fibres = {testing::fibre("A", {0, 0, 0}, {1, 0, 0})};
+  s.steps = {{1.0, 1.0}, {0.9, 1.0}, {0.8, 1.0}};
+  int step = 0;
+  const Result r = solve_load_path(s, [&](const Scene&, const Result*) {
+    Result one;
+    one.status = Status::converged;
+    ++step;
+    if (step >= 2) one.warnings = {"from the second step on"};
+    if (step == 3) one.warnings.push_back("only the third");
+    return one;
+  });
+  EXPECT_EQ(r.status, Status::converged);
+  ASSERT_EQ(r.steps.size(), 3u);
+  EXPECT_EQ(r.warnings, (std::vector<std::string>{"step 2 of 3: from the second step on",
+                                                  "step 3 of 3: only the third"}));
 }
 
 }  // namespace
