@@ -268,10 +268,14 @@ CoulombAnswer coulomb_answer(const std::vector<Fibre>& fibres, const Superpositi
                           halving <= kHalvings;
          ++halving) {
       std::vector<Contact> trial = part_of_the_way(contacts, newton, std::ldexp(1.0, -halving));
-      rn = measure(beams, geometry, trial);
-      sn = read_states(trial, rn, mu);
-      left_newton = left_of(rn, sn);
-      if (left_newton < left) newton = std::move(trial);
+      Residual rt = measure(beams, geometry, trial);
+      States st = read_states(trial, rt, mu);
+      const double left_trial = left_of(rt, st);
+      if (!(left_trial < left)) continue;
+      newton = std::move(trial);
+      rn = std::move(rt);
+      sn = std::move(st);
+      left_newton = left_trial;
     }
     contacts = std::move(newton);
     r = std::move(rn);

@@ -26,11 +26,13 @@ struct CoulombAnswer {
 /// direction. The normal forces and the sticking frictions then solve one linear system with the
 /// frictional Delassus operator (overlaps and slips that forces and frictions remove), the
 /// slipping frictions following the normal forces: a Newton step of the frictional problem with
-/// the contacts' states held. Its symmetric part is solved by conjugate gradients preconditioned
-/// with each fibre's stiffness at its stations (a friction along t acts as a normal force along
-/// ∓t), the slipping frictions' share by sweeps around it (they couple at μ). The step is put back
-/// on the cone, the states are read again, and the Newton steps repeat until what is left falls
-/// below `share` of what the state left, a few times at most.
+/// the contacts' states held. The slipping frictions make it unsymmetric: it is solved by GMRES,
+/// preconditioned with each fibre's stiffness at its stations (a friction along t acts as a
+/// normal force along ∓t). The step is put back on the cone, the states are read again, and the
+/// Newton steps repeat until what is left falls below `share` of what the state left, a few times
+/// at most; the state that left least is the answer. From a rough state contacts that slip can
+/// wedge fibres against each other, the systems are then nearly singular, and the steps do not
+/// settle: the caller then holds the frictions instead.
 CoulombAnswer coulomb_answer(const std::vector<Fibre>& fibres, const Superposition& beams,
                              const ContactGeometry& geometry, double mu, double share,
                              std::vector<Contact>& contacts);
