@@ -16,8 +16,9 @@ constexpr int kHalvings = 10;
 constexpr int kRestart = 30;
 constexpr int kMaxProducts = 500;
 constexpr double kReduction = 1e-10;
-/// A friction this close to μP lies on the edge of its disk: it slips.
-constexpr double kOnTheEdge = 1e-9;
+/// A friction this close to μP lies on the edge of its disk: it slips. The normals turning after
+/// a state was put on the cone move the frictions off its edge by about 1e-9 of their size.
+constexpr double kOnTheEdge = 1e-6;
 
 /// The second tangential direction of a crossing.
 Eigen::Vector3d second_tangent(const Contact& c) {

@@ -23,6 +23,9 @@ constexpr double kSwitchingShare = 1e-6;
 /// The contact problem solved from the final state is solved to this share of its residual: the
 /// estimate then carries three digits of the error.
 constexpr double kProblemShare = 1e-3;
+/// With Coulomb friction, two digits: below that, contacts on the edge of their disks change state
+/// at round-off and the Newton steps stall.
+constexpr double kFrictionalShare = 1e-2;
 constexpr int kMaxCgSteps = 400;
 constexpr long kMaxProjectedProducts = 300;
 /// Deformed contact: at most this many turns of the normals, stopping when they turn by less
@@ -250,7 +253,7 @@ ErrorEstimate estimate_iteration_error(const Scene& scene, const std::vector<Fib
     const std::vector<Contact> held = answer;
     for (Eigen::Index k = 0; k < n; ++k) answer[static_cast<std::size_t>(k)].force = from[k];
     const CoulombAnswer coulomb =
-        coulomb_answer(fibres, beams, geometry, mu, kProblemShare, answer);
+        coulomb_answer(fibres, beams, geometry, mu, kFrictionalShare, answer);
     estimate.passes += coulomb.steps;
     if (!coulomb.settled) {
       answer = held;
