@@ -143,7 +143,7 @@ void ReferenceSolver::make_saddle_point(const std::vector<std::vector<ContactSid
 Eigen::Vector3d ReferenceSolver::reaction_direction(Eigen::Index k, int i, bool on_a) const {
   const Contact& c = contacts_[k];
   if (i == 0) return (c.kind == ContactKind::wall || !on_a) ? c.normal : Eigen::Vector3d(-c.normal);
-  const Eigen::Vector3d t = i == 1 ? c.tangent : Eigen::Vector3d(c.normal.cross(c.tangent));
+  const Eigen::Vector3d t = i == 1 ? c.tangent : c.second_tangent();
   return on_a ? t : Eigen::Vector3d(-t);
 }
 

@@ -263,7 +263,7 @@ void ReferenceSolver::solve_friction(const std::vector<char>& excluded, Start st
     const Eigen::Index o = problem.offset[k];
     r[o] = start == Start::last_answer ? c.force : P_[k];
     if (c.tangents >= 1) r[o + 1] = c.tangent.dot(c.friction);
-    if (c.tangents == 2) r[o + 2] = c.normal.cross(c.tangent).dot(c.friction);
+    if (c.tangents == 2) r[o + 2] = c.second_tangent().dot(c.friction);
   }
   TrescaOptions options;
   options.threshold = threshold_;
@@ -283,7 +283,7 @@ void ReferenceSolver::solve_friction(const std::vector<char>& excluded, Start st
     c.force = std::max(r[o], 0.0);
     c.friction.setZero();
     if (c.tangents >= 1) c.friction += r[o + 1] * c.tangent;
-    if (c.tangents == 2) c.friction += r[o + 2] * c.normal.cross(c.tangent);
+    if (c.tangents == 2) c.friction += r[o + 2] * c.second_tangent();
     P_[k] = c.force;
     pushing_[k] = c.force > 0.0 ? 1 : 0;
   }
@@ -313,7 +313,7 @@ void ReferenceSolver::keep_contact_problem(const std::vector<char>& excluded) {
     const Eigen::Index o = p.offset[k];
     p.reaction[o] = c.force;
     if (p.contacts[k].tangents >= 1) p.reaction[o + 1] = c.tangent.dot(c.friction);
-    if (p.contacts[k].tangents == 2) p.reaction[o + 2] = c.normal.cross(c.tangent).dot(c.friction);
+    if (p.contacts[k].tangents == 2) p.reaction[o + 2] = c.second_tangent().dot(c.friction);
   }
 }
 

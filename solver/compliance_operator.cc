@@ -6,11 +6,7 @@
 
 namespace fibrecheck {
 
-namespace {
-Eigen::Vector3d second_tangent(const Contact& c) {
-  return c.normal.cross(c.tangent);
-}
-}  // namespace
+namespace {}  // namespace
 
 void ComplianceOperator::apply(const Eigen::VectorXd& x, Eigen::VectorXd& y) const {
   const std::size_t n = contacts_.size();
@@ -22,7 +18,7 @@ void ComplianceOperator::apply(const Eigen::VectorXd& x, Eigen::VectorXd& y) con
     const double P = scale * x[m * k];
     force_on_a[k] = (c.kind == ContactKind::wall ? P : -P) * c.normal;
     if (m == 3 && c.tangents >= 1) force_on_a[k] += scale * x[m * k + 1] * c.tangent;
-    if (m == 3 && c.tangents == 2) force_on_a[k] += scale * x[m * k + 2] * second_tangent(c);
+    if (m == 3 && c.tangents == 2) force_on_a[k] += scale * x[m * k + 2] * c.second_tangent();
   }
   superposition_.contact_displacements(contacts_, force_on_a, false, u_a, u_b);
   y.setZero(static_cast<Eigen::Index>(m * n));
@@ -34,7 +30,7 @@ void ComplianceOperator::apply(const Eigen::VectorXd& x, Eigen::VectorXd& y) con
     y[m * k] = scale * c.normal.dot(c.kind == ContactKind::wall ? u_a[k] : relative);
     // A tangential force on A removes slip: its part of W is −t·(u_B − u_A).
     if (m == 3 && c.tangents >= 1) y[m * k + 1] = -scale * c.tangent.dot(relative);
-    if (m == 3 && c.tangents == 2) y[m * k + 2] = -scale * second_tangent(c).dot(relative);
+    if (m == 3 && c.tangents == 2) y[m * k + 2] = -scale * c.second_tangent().dot(relative);
   }
 }
 

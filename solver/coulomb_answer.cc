@@ -20,11 +20,6 @@ constexpr double kReduction = 1e-10;
 /// a state was put on the cone move the frictions off its edge by about 1e-9 of their size.
 constexpr double kOnTheEdge = 1e-6;
 
-/// The second tangential direction of a crossing.
-Eigen::Vector3d second_tangent(const Contact& c) {
-  return c.normal.cross(c.tangent);
-}
-
 /// What a state leaves: each contact's overlap along its normal and its slip since the step began.
 struct Residual {
   Eigen::VectorXd overlap;
@@ -100,7 +95,7 @@ std::vector<Contact> turned_into_normals(const std::vector<Contact>& contacts) {
   for (const Contact& c : contacts) {
     turned.push_back(c);
     const double side = c.kind == ContactKind::wall ? 1.0 : -1.0;
-    for (const Eigen::Vector3d& t : {c.tangent, second_tangent(c)}) {
+    for (const Eigen::Vector3d& t : {c.tangent, c.second_tangent()}) {
       Contact along = c;
       if (c.tangents > 0) along.normal = side * t;
       turned.push_back(along);
@@ -185,7 +180,7 @@ void newton_step(const std::vector<Fibre>& fibres, const Superposition& beams,
     b[static_cast<Eigen::Index>(3 * k + 1)] = r.slip[k].dot(c.tangent);
     if (c.tangents == 2) {
       free[3 * k + 2] = 1;
-      b[static_cast<Eigen::Index>(3 * k + 2)] = r.slip[k].dot(second_tangent(c));
+      b[static_cast<Eigen::Index>(3 * k + 2)] = r.slip[k].dot(c.second_tangent());
     }
   }
   auto restrict = [&free](Eigen::VectorXd& v) {
@@ -203,7 +198,7 @@ void newton_step(const std::vector<Fibre>& fibres, const Superposition& beams,
       const Eigen::Vector3d change = mu * P * s.direction[k] - F_share * c.friction;
       out[static_cast<Eigen::Index>(3 * k + 1)] = change.dot(c.tangent);
       out[static_cast<Eigen::Index>(3 * k + 2)] =
-          c.tangents == 2 ? change.dot(second_tangent(c)) : 0.0;
+          c.tangents == 2 ? change.dot(c.second_tangent()) : 0.0;
     }
     return out;
   };
@@ -226,7 +221,8 @@ void newton_step(const std::vector<Fibre>& fibres, const Superposition& beams,
     const Eigen::Index i = static_cast<Eigen::Index>(3 * k);
     if (!s.pushes[k]) continue;
     c.force = std::max(c.force + x[i], 0.0);
-    if (c.tangents > 0) c.friction += change[i + 1] * c.tangent + change[i + 2] * second_tangent(c);
+    if (c.tangents > 0)
+      c.friction += change[i + 1] * c.tangent + change[i + 2] * c.second_tangent();
     c.friction = onto_coulomb_disk(c.tangential(c.friction), mu * c.force);
   }
 }

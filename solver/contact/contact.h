@@ -52,6 +52,8 @@ struct Contact {
   Eigen::Vector3d origin = Eigen::Vector3d::Zero();  ///< relative displacement at the step's start
   Eigen::Vector3d slip = Eigen::Vector3d::Zero();    ///< s, tangential, mm
 
+  /// The second tangential direction of a crossing, normal × tangent.
+  Eigen::Vector3d second_tangent() const { return normal.cross(tangent); }
   /// The tangential part of a vector, in the directions this contact can slip in.
   Eigen::Vector3d tangential(const Eigen::Vector3d& v) const {
     if (tangents == 0) return Eigen::Vector3d::Zero();
