@@ -169,6 +169,9 @@ class IterativeSolver {
   FrictionFigures tresca_figures_;  ///< the inner problem's residuals at the last evaluation
   bool attached_ = false;  ///< the superposition and the step know the current contact list
   std::vector<std::vector<Eigen::Vector3d>> grid_u_, grid_u_at_detection_;
+  double largest_move_ = 0.0;         ///< of the fibres since detection, at the last check (mm)
+  long shape_check_interval_ = 0;     ///< iterations between checks of the fibres' shape
+  long next_shape_check_ = 0;         ///< the iteration of the next one
   std::vector<int> crossing_fibres_;  ///< fibres with crossings (deformed contact)
   std::vector<std::vector<Eigen::Vector3d>> crossing_grid_u_;  ///< theirs at the grid
   Residuals residuals_;
@@ -528,9 +531,17 @@ long IterativeSolver::update(long iteration) {
 // of it since, they are found again. Under the working set the shape is checked every 50
 // iterations (a deflection field of every fibre costs more than an iteration on the set), the
 // other rules every 10; a rule that solves each candidate list whole only when it is solved.
+// While the fibres have moved less than a quarter of the way, the checks grow sparser, up to
+// eight times: near the answer they hardly move.
 std::optional<Termination> IterativeSolver::follow_the_fibres(long done) {
-  const int every = rule_->solves_each_list() ? 0 : working_set_.active() ? 50 : 10;
-  if (every == 0 || done % every != 0 || !moved_beyond_margin()) return std::nullopt;
+  if (rule_->solves_each_list() || done < next_shape_check_) return std::nullopt;
+  const long every = working_set_.active() ? 50 : 10;
+  const bool moved = moved_beyond_margin();
+  shape_check_interval_ = largest_move_ < 0.125 * margin_
+                              ? std::clamp(2 * shape_check_interval_, every, 8 * every)
+                              : every;
+  next_shape_check_ = done + shape_check_interval_;
+  if (!moved) return std::nullopt;
   return detect_again();
 }
 
@@ -584,6 +595,7 @@ bool IterativeSolver::moved_beyond_margin() {
   for (std::size_t f = 0; f < fibres_.size(); ++f)
     for (std::size_t j = 0; j < grid_u_[f].size(); ++j)
       largest = std::max(largest, (grid_u_[f][j] - grid_u_at_detection_[f][j]).norm());
+  largest_move_ = largest;
   return largest > 0.5 * margin_;
 }
 

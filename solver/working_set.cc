@@ -27,13 +27,8 @@ void WorkingSet::measure_candidates(const IterationState& state) {
   }
   candidate_superposition_.contact_displacements(candidates_, force_, true, u_a_, u_b_);
   overlap_.resize(candidates_.size());
-  const bool deformed = geometry_.deformed();
 #pragma omp parallel for schedule(static) if (n > 4096)
-  for (int i = 0; i < n; ++i) {
-    // On the deformed fibres a candidate that joins takes the normal of its displaced centres.
-    if (deformed && slot_[i] < 0) geometry_.follow(candidates_[i], u_a_[i], u_b_[i]);
-    overlap_[i] = geometry_.overlap(candidates_[i], u_a_[i], u_b_[i]);
-  }
+  for (int i = 0; i < n; ++i) overlap_[i] = geometry_.overlap(candidates_[i], u_a_[i], u_b_[i]);
 }
 
 bool WorkingSet::needed(const IterationState& state, int i, bool first) const {
@@ -75,6 +70,9 @@ void WorkingSet::rebuild(IterationState& state, std::vector<int> members) {
   for (std::size_t j = 0; j < members.size(); ++j) {
     const int k = slot_[members[j]];
     working[j] = k >= 0 ? state.contacts[k] : candidates_[members[j]];
+    // On the deformed fibres a candidate that joins takes the normal of its displaced centres.
+    if (k < 0 && geometry_.deformed())
+      geometry_.follow(working[j], u_a_[members[j]], u_b_[members[j]]);
     working[j].overlap = synced_overlap_[members[j]];
     if (k < 0) working[j].force = 0.0;
     if (k >= 0 && momentum) iterate[j] = state.iterate[k], previous[j] = state.previous[k];
@@ -92,6 +90,13 @@ void WorkingSet::leave(IterationState& state) {
   Eigen::VectorXd iterate = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(candidates_.size()));
   Eigen::VectorXd previous = iterate;
   for (Contact& c : candidates_) c.force = 0.0;
+  // On the deformed fibres the others take the normals of their displaced centres at the last
+  // revision, as a newcomer does: measured along an older normal their overlaps would be too large.
+  if (geometry_.deformed() && u_a_.size() == candidates_.size()) {
+    const int n = static_cast<int>(candidates_.size());
+#pragma omp parallel for schedule(static) if (n > 4096)
+    for (int i = 0; i < n; ++i) geometry_.follow(candidates_[i], u_a_[i], u_b_[i]);
+  }
   for (std::size_t i = 0; i < state.contacts.size(); ++i) {
     candidates_[members_[i]] = state.contacts[i];
     if (momentum)
