@@ -148,6 +148,7 @@ class IterativeSolver {
   /// between the linearised problems (the seed's rule follows them at every iteration).
   bool lagged_normals_;
   long geometric_updates_ = 0;
+  double least_after_update_ = INFINITY;  ///< the smallest residual an update of the normals left
   /// Of what the last update left: the residual the linearised problem is solved to before
   /// normals next follow; a tenth, down to a hundredth after updates that made no progress.
   double follow_fraction_ = 0.1;
@@ -444,6 +445,7 @@ bool IterativeSolver::follows_the_fibres_now(long iteration, double residual) {
   state_.forces_gathered = false;
   evaluate(false);
   const double after = watched_residual();
+  least_after_update_ = std::min(least_after_update_, after);
   // An update from within t_d that leaves more than t_d: the next one waits for a smaller
   // residual, so that the normals' own change, not the linearised problem's, decides.
   if (residual < t && !(after < t)) follow_floor_ = std::max(0.5 * follow_floor_, 0.01);
@@ -669,6 +671,14 @@ std::string IterativeSolver::capped_message() const {
   out << "stopped after " << options_.max_iterations << " iterations with overlap residual "
       << residuals_.overlap << " mm and gap-force residual " << residuals_.gap_force
       << " mm (tolerance " << options_.overlap_tolerance << " mm)";
+  // Under the deformed contact a state can meet t_d along the normals it was solved with while
+  // the normals of its displaced centres still turn: said, or the residuals above read as a
+  // contradiction.
+  if (lagged_normals_ && geometric_updates_ > 0 &&
+      !(least_after_update_ < options_.overlap_tolerance))
+    out << "; the normals had not settled: each of the " << geometric_updates_
+        << " updates of the normals to the displaced centres left at least " << least_after_update_
+        << " mm";
   if (options_.rule != UpdateRule::accelerated)
     out << "; rule accelerated needs far fewer iterations where the compliance is "
            "ill-conditioned (line contacts near supports, tows)";

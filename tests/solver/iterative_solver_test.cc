@@ -71,6 +71,29 @@ TEST(IterativeSolver, IterationCapIsReportedAsMaxIterations) {
   expect_finite(r);
 }
 
+// Under the deformed contact a run that runs out of iterations says whether its normals had
+// settled: the residuals it reports are those along the normals its last problem was solved
+// with, and can lie within t_d while every update of the normals left more.
+TEST(IterativeSolver, RunningOutOnTheDeformedFibresSaysTheNormalsHadNotSettled) {
+  TowOptions tow;
+  tow.fibres = 19;
+  tow.slices = 40;
+  tow.seed = 5;
+  Scene s = generate_tow(tow);
+  s.solver.max_iterations = 300;
+  const Result deformed = solve(s);
+  ASSERT_EQ(deformed.status, Status::max_iterations);
+  ASSERT_GT(deformed.geometric_updates, 0);
+  EXPECT_NE(deformed.message.find("the normals had not settled: each of the " +
+                                  std::to_string(deformed.geometric_updates) + " updates"),
+            std::string::npos)
+      << deformed.message;
+  s.contact.geometry = ContactGeometryModel::linearised;
+  const Result linearised = solve(s);
+  ASSERT_EQ(linearised.status, Status::max_iterations);
+  EXPECT_EQ(linearised.message.find("normals"), std::string::npos) << linearised.message;
+}
+
 // A run that meets the scene's t_d but runs out of iterations while t_d was made smaller for a
 // force tolerance it cannot reach (1e-13: below what the round-off of a 100-slice line contact
 // lets any state have) is converged by the scene's own criterion, and says which tolerance it
