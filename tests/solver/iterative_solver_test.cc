@@ -21,6 +21,15 @@ bool has_stage(const Result& r, const std::string& stage) {
   return std::find(r.stages.begin(), r.stages.end(), stage) != r.stages.end();
 }
 
+/// A generated tow of 19 fibres, 40 slices, compacted in one step.
+Scene compacted_tow_19() {
+  TowOptions tow;
+  tow.fibres = 19;
+  tow.slices = 40;
+  tow.seed = 5;
+  return generate_tow(tow);
+}
+
 void expect_finite(const Result& r) {
   EXPECT_TRUE(std::isfinite(r.strain_energy) && std::isfinite(r.strain_energy_exact) &&
               std::isfinite(r.max_overlap));
@@ -75,11 +84,7 @@ TEST(IterativeSolver, IterationCapIsReportedAsMaxIterations) {
 // settled: the residuals it reports are those along the normals its last problem was solved
 // with, and can lie within t_d while every update of the normals left more.
 TEST(IterativeSolver, RunningOutOnTheDeformedFibresSaysTheNormalsHadNotSettled) {
-  TowOptions tow;
-  tow.fibres = 19;
-  tow.slices = 40;
-  tow.seed = 5;
-  Scene s = generate_tow(tow);
+  Scene s = compacted_tow_19();
   s.solver.max_iterations = 300;
   const Result deformed = solve(s);
   ASSERT_EQ(deformed.status, Status::max_iterations);
@@ -185,11 +190,7 @@ TEST(IterativeSolver, RunsAreDeterministic) {
 // gap above t_d, forces balanced against the walls (no external load: the walls' reactions and the
 // supports carry the compaction).
 TEST(IterativeSolver, CompactedTowEndsJustTouching) {
-  TowOptions tow;
-  tow.fibres = 19;
-  tow.slices = 40;
-  tow.seed = 5;
-  Scene s = generate_tow(tow);
+  Scene s = compacted_tow_19();
   s.solver.rule = UpdateRule::accelerated;
   const Result r = solve(s);
   ASSERT_EQ(r.status, Status::converged) << r.message;
