@@ -6,8 +6,6 @@
 
 namespace fibrecheck {
 
-namespace {}  // namespace
-
 void ComplianceOperator::apply(const Eigen::VectorXd& x, Eigen::VectorXd& y) const {
   const std::size_t n = contacts_.size();
   const int m = components();

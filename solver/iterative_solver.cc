@@ -116,7 +116,7 @@ class IterativeSolver {
 
   void detect_contacts();
   void compute_grid();
-  bool moved_beyond_margin();
+  double largest_move();
   void estimate_step();
   std::optional<std::string> find_unresolvable() const;
   std::optional<Termination> detect_again();
@@ -170,7 +170,6 @@ class IterativeSolver {
   FrictionFigures tresca_figures_;  ///< the inner problem's residuals at the last evaluation
   bool attached_ = false;  ///< the superposition and the step know the current contact list
   std::vector<std::vector<Eigen::Vector3d>> grid_u_, grid_u_at_detection_;
-  double largest_move_ = 0.0;         ///< of the fibres since detection, at the last check (mm)
   long shape_check_interval_ = 0;     ///< iterations between checks of the fibres' shape
   long next_shape_check_ = 0;         ///< the iteration of the next one
   std::vector<int> crossing_fibres_;  ///< fibres with crossings (deformed contact)
@@ -396,7 +395,7 @@ std::optional<Termination> IterativeSolver::forces_accurate_enough() {
 // changed the problem, which must then be measured again.
 bool IterativeSolver::must_measure_again() {
   if (working_set_.active() && working_set_.revise(state_)) return true;
-  if (moved_beyond_margin()) {
+  if (largest_move() > 0.5 * margin_) {
     detect_contacts();
     return true;
   }
@@ -538,12 +537,11 @@ long IterativeSolver::update(long iteration) {
 std::optional<Termination> IterativeSolver::follow_the_fibres(long done) {
   if (rule_->solves_each_list() || done < next_shape_check_) return std::nullopt;
   const long every = working_set_.active() ? 50 : 10;
-  const bool moved = moved_beyond_margin();
-  shape_check_interval_ = largest_move_ < 0.125 * margin_
-                              ? std::clamp(2 * shape_check_interval_, every, 8 * every)
-                              : every;
+  const double moved = largest_move();
+  shape_check_interval_ =
+      moved < 0.125 * margin_ ? std::clamp(2 * shape_check_interval_, every, 8 * every) : every;
   next_shape_check_ = done + shape_check_interval_;
-  if (!moved) return std::nullopt;
+  if (!(moved > 0.5 * margin_)) return std::nullopt;
   return detect_again();
 }
 
@@ -590,15 +588,15 @@ void IterativeSolver::detect_contacts() {
   if (use_working_set_) working_set_.enter(state_);
 }
 
-bool IterativeSolver::moved_beyond_margin() {
+// How far the fibres have moved since the candidates were found, at the detection grid (mm).
+double IterativeSolver::largest_move() {
   state_.gather_forces();
   compute_grid();
   double largest = 0.0;
   for (std::size_t f = 0; f < fibres_.size(); ++f)
     for (std::size_t j = 0; j < grid_u_[f].size(); ++j)
       largest = std::max(largest, (grid_u_[f][j] - grid_u_at_detection_[f][j]).norm());
-  largest_move_ = largest;
-  return largest > 0.5 * margin_;
+  return largest;
 }
 
 // The rule's step on this candidate list, from λmax of the operator it steps on: D½·W·D½ for the
