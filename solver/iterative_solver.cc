@@ -110,7 +110,8 @@ class IterativeSolver {
   bool must_measure_again();
   void sequence_starts_afresh();
   std::optional<Termination> diverging(long iteration, double residual);
-  Termination stalled_within_scene_tolerance(const Termination& verdict);
+  Termination stalled_within_scene_tolerance(const Termination& verdict,
+                                             bool at_best_update = false);
   long update(long iteration);
   std::optional<Termination> follow_the_fibres(long done);
 
@@ -123,6 +124,8 @@ class IterativeSolver {
   double watched_residual() const;
   void remember_best(double residual);
   void restore_best();
+  void remember_best_update(double residual);
+  bool return_to_best_update();
   void report_progress(long iteration, Clock::time_point start);
   std::string capped_message() const;
   Result finish(const Termination& end, long iterations, Clock::time_point start);
@@ -187,6 +190,16 @@ class IterativeSolver {
   Eigen::VectorXd best_forces_;  ///< the state of the smallest residual, for a diverged run
   std::vector<Eigen::Vector3d> best_friction_;
   double best_residual_ = INFINITY;
+  /// Under lagged normals, the state right after the update that left the smallest residual
+  /// within the scene's t_d: its contacts (the working set's members, `members` their places in
+  /// the candidate list, or every candidate with `members` empty), in detection `detection`.
+  struct BestUpdate {
+    double residual = INFINITY;
+    long detection = -1;
+    std::vector<int> members;
+    std::vector<Contact> contacts;
+  } best_update_;
+  long detections_ = 0;  ///< candidate lists found so far
   Clock::time_point last_progress_ = Clock::now();
   std::vector<std::string> warnings_;
   std::vector<HistoryEntry> history_;
@@ -235,6 +248,7 @@ Result IterativeSolver::run() {
       break;
     }
     if (judged) remember_best(residual);
+    if (judged && lagged_normals_) remember_best_update(residual);
     if (judged && just_touching(overlap_tolerance_)) {
       if (must_measure_again()) {
         ++iteration;
@@ -250,7 +264,7 @@ Result IterativeSolver::run() {
       break;
     }
     if (auto verdict = diverging(iteration, residual)) {
-      end = stalled_within_scene_tolerance(*verdict);
+      end = stalled_within_scene_tolerance(*verdict, return_to_best_update());
       break;
     }
     report_progress(iteration, start);
@@ -266,6 +280,8 @@ Result IterativeSolver::run() {
     evaluate(true);
     end = stalled_within_scene_tolerance(end);
   }
+  if (end.status == Status::max_iterations && return_to_best_update())
+    end = stalled_within_scene_tolerance(end, true);
   if (end.status == Status::max_iterations) {
     iteration = options_.max_iterations;
     end.message = capped_message();
@@ -470,18 +486,27 @@ bool IterativeSolver::follows_the_fibres_now(long iteration, double residual) {
 // the residual above the smaller t_d; with Coulomb friction, contacts wedged against each other
 // can slow the iteration to a crawl), still meets the scene's own contact criterion: it is
 // converged, with a warning that the force tolerance was not reached.
-Termination IterativeSolver::stalled_within_scene_tolerance(const Termination& verdict) {
+Termination IterativeSolver::stalled_within_scene_tolerance(const Termination& verdict,
+                                                            bool at_best_update) {
   const double t = options_.overlap_tolerance;
   const bool stalled =
       verdict.criterion == Criterion::oscillation || verdict.criterion == Criterion::max_iterations;
-  if (!stalled || !(overlap_tolerance_ < t) || !just_touching(t)) return verdict;
+  const bool t_d_made_smaller = overlap_tolerance_ < t;
+  if (!stalled || !(t_d_made_smaller || at_best_update) || !just_touching(t)) return verdict;
+  const char* how =
+      verdict.criterion == Criterion::oscillation ? "stalled" : "ran out of iterations";
   std::ostringstream out;
   out.precision(3);
-  out << "force_tolerance " << options_.force_tolerance << " not reached: the iteration "
-      << (verdict.criterion == Criterion::oscillation ? "stalled" : "ran out of iterations")
-      << " with t_d made " << overlap_tolerance_ << " mm for the estimated force error "
-      << last_force_estimate_ << ", its residual " << watched_residual()
-      << " mm within the scene's t_d";
+  if (t_d_made_smaller)
+    out << "force_tolerance " << options_.force_tolerance << " not reached: the iteration " << how
+        << " with t_d made " << overlap_tolerance_ << " mm for the estimated force error "
+        << last_force_estimate_ << ", its residual " << watched_residual()
+        << " mm within the scene's t_d";
+  else
+    out << "force_tolerance " << options_.force_tolerance
+        << " not shown to be reached: the sequence of problems linearised about the normals " << how
+        << "; it ends in the best state an update of the normals left, within the scene's t_d "
+        << "(residual " << watched_residual() << " mm)";
   warnings_.push_back(out.str());
   return Termination{Status::converged, Criterion::contact, ""};
 }
@@ -557,6 +582,7 @@ void IterativeSolver::compute_grid() {
 // keep their state (force, friction, iterates); W and its step are estimated again only when the
 // list changed.
 void IterativeSolver::detect_contacts() {
+  ++detections_;
   working_set_.leave(state_);
   state_.gather_forces();
   compute_grid();
@@ -652,6 +678,46 @@ void IterativeSolver::restore_best() {
   }
   state_.forces_gathered = false;
   evaluate(true);
+}
+
+// Under lagged normals a sequence of linearised problems can wander once it is within the scene's
+// t_d: a fibre that rolls off another is followed a little at each update until a neighbour
+// catches it, and what the updates leave grows for a while. The state right after the best
+// update within the scene's t_d is kept, so that a run stopped later (no progress, or out of
+// iterations) ends in the best state it was in, judged as it was. Frictionless only: with friction
+// a state's residuals also hang on the Tresca radii of its time.
+void IterativeSolver::remember_best_update(double residual) {
+  if (mu_ > 0.0) return;
+  if (!(residual < options_.overlap_tolerance) || !(residual < best_update_.residual)) return;
+  best_update_.residual = residual;
+  best_update_.detection = detections_;
+  best_update_.contacts = state_.contacts;
+  best_update_.members.clear();
+  if (working_set_.active()) best_update_.members = working_set_.members();
+}
+
+// Where an update left a state within the scene's t_d on the current candidate list: the state
+// is judged as an update would judge it (its normals follow its displaced centres), and returns
+// to the best update's if that was better. False where there is no such update.
+bool IterativeSolver::return_to_best_update() {
+  if (best_update_.detection != detections_) return false;
+  working_set_.leave(state_);
+  evaluate(true);
+  state_.forces_gathered = false;
+  evaluate(false);
+  if (watched_residual() <= best_update_.residual) return true;
+  std::vector<Contact> contacts = std::move(best_update_.contacts);
+  if (!best_update_.members.empty()) {
+    std::vector<Contact> candidates = state_.contacts;
+    for (Contact& c : candidates) c.force = 0.0;
+    for (std::size_t k = 0; k < contacts.size(); ++k)
+      candidates[static_cast<std::size_t>(best_update_.members[k])] = contacts[k];
+    contacts = std::move(candidates);
+  }
+  best_update_ = BestUpdate{};
+  take_the_answer(std::move(contacts));
+  evaluate(false);
+  return true;
 }
 
 void IterativeSolver::report_progress(long iteration, Clock::time_point start) {

@@ -30,6 +30,8 @@ class WorkingSet {
         tolerance_(tolerance) {}
 
   bool active() const { return active_; }
+  /// The place in the candidate list of each of the state's contacts, while active.
+  const std::vector<int>& members() const { return members_; }
   std::size_t candidates() const { return candidates_.size(); }
 
   /// The state's contacts become the candidate list, and the state the working set of it.

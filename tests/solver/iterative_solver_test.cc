@@ -121,6 +121,34 @@ TEST(IterativeSolver, RunningOutWithinTheScenesToleranceIsConvergedWithAWarning)
   EXPECT_EQ(solve(s).status, Status::max_iterations);
 }
 
+// On the deformed fibres a run whose update of the normals once left a state within the scene's
+// t_d, and that then runs out of iterations (here right after the force tolerance, 1e-13, sent it
+// on from there), ends in the better of that state and its last one judged as an update would
+// judge it: converged by the scene's own criterion, with a warning, not max_iterations.
+TEST(IterativeSolver, RunningOutOnTheDeformedFibresReturnsToTheBestUpdate) {
+  Scene s = compacted_tow_19();
+  s.solver.force_tolerance = 0.0;
+  const Result met = solve(s);
+  ASSERT_EQ(met.status, Status::converged) << met.message;
+  s.solver.force_tolerance = 1e-13;
+  s.solver.max_iterations = met.iterations + 1;
+  const Result r = solve(s);
+  EXPECT_EQ(r.status, Status::converged) << r.message;
+  EXPECT_EQ(r.criterion, Criterion::contact);
+  const double t = s.overlap_tolerance();
+  EXPECT_LT(r.max_overlap, t);
+  EXPECT_LT(r.gap_force_residual, t);
+  EXPECT_LT(r.deformed_test.gap_where_pushing, t);
+  EXPECT_LT(r.deformed_test.overlap_where_free, t);
+  ASSERT_EQ(r.warnings.size(), 1u);
+  EXPECT_NE(r.warnings[0].find("force_tolerance 1e-13 not shown to be reached"), std::string::npos)
+      << r.warnings[0];
+  EXPECT_NE(r.warnings[0].find("ends in the best state an update of the normals left"),
+            std::string::npos)
+      << r.warnings[0];
+  expect_finite(r);
+}
+
 // The energy criterion of §4.3.6 ends a slow run when the last n_i energies agree within t_U.
 TEST(IterativeSolver, EnergyCriterionStopsWhenEnergySettles) {
   Scene s = testing::parallel(1e-4, 50);
