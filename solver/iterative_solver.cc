@@ -778,8 +778,16 @@ Result solve_iteratively(const Scene& scene, const SolverOptions& options) {
   // A load path: each step starts from the contacts and forces the previous one ended with.
   std::vector<Contact> state;
   SlipOrigins origins;
+  int steps_begun = 0;
   Result r = solve_load_path(scene, [&](const Scene& step, const Result* previous) {
-    IterativeSolver solver(step, options);
+    SolverOptions step_options = options;
+    const int k = ++steps_begun, n = static_cast<int>(scene.steps.size());
+    if (options.progress && n > 0)
+      step_options.progress = [&options, k, n](IterationProgress p) {
+        p.step = k, p.steps = n;
+        options.progress(p);
+      };
+    IterativeSolver solver(step, step_options);
     if (previous) solver.start_from(state, origins);
     Result result = solver.run();
     state = solver.contacts();

@@ -18,6 +18,8 @@ struct IterationProgress {
   double tolerance = 0.0;           ///< t_d, mm
   std::size_t contacts = 0;
   double elapsed_s = 0.0;
+  int step = 0;   ///< of a load path, from 1
+  int steps = 0;  ///< of the load path; 0 without one
 };
 
 /// Options of the iterative solver. Defaults come from the scene (`from_scene`); the command line

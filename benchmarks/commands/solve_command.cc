@@ -26,7 +26,9 @@ std::function<void(const IterationProgress&)> progress_printer(bool terminal) {
   return [terminal](const IterationProgress& p) {
     std::ostringstream line;
     line.precision(3);
-    line << "  iteration " << p.iteration << "/" << p.max_iterations << ", " << p.contacts
+    line << "  ";
+    if (p.steps > 0) line << "step " << p.step << " of " << p.steps << ", ";
+    line << "iteration " << p.iteration << "/" << p.max_iterations << ", " << p.contacts
          << " candidate contacts, overlap " << p.overlap_residual << " mm, gap-force "
          << p.gap_force_residual << " mm (tolerance " << p.tolerance << "), " << std::fixed
          << std::setprecision(1) << p.elapsed_s << " s";

@@ -54,6 +54,28 @@ TEST(LoadPath, CompactionStepsMeetTheClosedFormAtEveryStep) {
   EXPECT_NEAR(force_between_a_and_b(alone), P, 1e-9 * P);
 }
 
+// Progress on a long sequence says which step it is in: every report of step k says k of 3, and
+// the steps report in order (each step compacts the crossing further, so each has work to do).
+TEST(LoadPath, ProgressSaysWhichStep) {
+  Scene s = testing::crossing(0.3, 0.6, 1e-4);
+  s.solver.overlap_tolerance = 1e-13;
+  for (double F : {0.999, 0.995, 0.99}) s.steps.push_back({F, 1.0});
+  SolverOptions options = SolverOptions::from_scene(s);
+  options.progress_interval_s = 0.0;
+  std::vector<int> steps_seen;
+  options.progress = [&](const IterationProgress& p) {
+    EXPECT_EQ(p.steps, 3);
+    if (steps_seen.empty() || steps_seen.back() != p.step) steps_seen.push_back(p.step);
+  };
+  const Result r = solve_iteratively(s, options);
+  ASSERT_EQ(r.status, Status::converged) << r.message;
+  EXPECT_EQ(steps_seen, (std::vector<int>{1, 2, 3}));
+  // A single scene reports no step.
+  s.steps.clear();
+  options.progress = [](const IterationProgress& p) { EXPECT_EQ(p.steps, 0); };
+  EXPECT_EQ(solve_iteratively(s, options).status, Status::converged);
+}
+
 // Loading, unloading and reloading: frictionless contact is linear in the load while the
 // contact stays closed, R = λ·P·C_B/(C_A + C_B) at the last step's load factor λ.
 TEST(LoadPath, LoadFactorsScaleTheLoads) {
