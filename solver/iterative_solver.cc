@@ -485,7 +485,9 @@ bool IterativeSolver::follows_the_fibres_now(long iteration, double residual) {
 // iterations there (a contact next to a support, whose overlap the forces barely move, can hold
 // the residual above the smaller t_d; with Coulomb friction, contacts wedged against each other
 // can slow the iteration to a crawl), still meets the scene's own contact criterion: it is
-// converged, with a warning that the force tolerance was not reached.
+// converged, with a warning that the force tolerance was not reached. So is a run that ends in the
+// best state an update of the normals left within the scene's t_d (`at_best_update`), with a
+// warning that the force tolerance was not shown to be reached.
 Termination IterativeSolver::stalled_within_scene_tolerance(const Termination& verdict,
                                                             bool at_best_update) {
   const double t = options_.overlap_tolerance;
@@ -687,8 +689,8 @@ void IterativeSolver::restore_best() {
 // iterations) ends in the best state it was in, judged as it was. Frictionless only: with friction
 // a state's residuals also hang on the Tresca radii of its time.
 void IterativeSolver::remember_best_update(double residual) {
-  if (mu_ > 0.0) return;
-  if (!(residual < options_.overlap_tolerance) || !(residual < best_update_.residual)) return;
+  if (mu_ > 0.0 || !(residual < options_.overlap_tolerance)) return;
+  if (best_update_.detection == detections_ && !(residual < best_update_.residual)) return;
   best_update_.residual = residual;
   best_update_.detection = detections_;
   best_update_.contacts = state_.contacts;
