@@ -304,6 +304,10 @@ void add_compaction(CLI::App& study, StudyArguments& args) {
                    "Steps whose state is kept for cross-section pictures (the last always is)")
       ->delimiter(',');
   compaction
+      ->add_option("--reference-fibres", o.reference_fibres,
+                   "The reference only on scenes of at most this many fibres (0: on every scene)")
+      ->check(CLI::NonNegativeNumber);
+  compaction
       ->add_option("--frictional-reference-fibres", o.frictional_reference_fibres,
                    "The reference with friction only on scenes of at most this many fibres (0: "
                    "on every scene)")

@@ -54,24 +54,30 @@ struct Plan {
   ContactGeometryModel geometry;
 };
 
+/// Whether the reference runs on `scene`: not when it has more than `limit` fibres (0: no limit).
+bool within(const Scene& scene, int limit) {
+  return limit == 0 || scene.fibres.size() <= static_cast<std::size_t>(limit);
+}
+
 /// Both solvers frictionless in the scene's contact geometry and in the other; with the scene's
-/// μ > 0 also both with Coulomb friction (the reference where the scene is within
-/// `frictional_reference_fibres`) and the iterative solver with the seed's rule.
+/// μ > 0 also both with Coulomb friction and the iterative solver with the seed's rule. The
+/// reference only on scenes within `reference_fibres`, with friction within
+/// `frictional_reference_fibres`.
 std::vector<Plan> plans_of(const Scene& scene, const CompactionStudyOptions& options) {
   const ContactGeometryModel own = scene.contact.geometry;
   const ContactGeometryModel other = in_other_geometry(scene).contact.geometry;
-  std::vector<Plan> plans = {{"iterative", 0.0, FrictionModel::coulomb, true, own},
-                             {"fem", 0.0, FrictionModel::coulomb, true, own}};
+  const bool reference = within(scene, options.reference_fibres);
   const double mu = scene.contact.friction;
+  std::vector<Plan> plans = {{"iterative", 0.0, FrictionModel::coulomb, true, own}};
+  if (reference) plans.push_back({"fem", 0.0, FrictionModel::coulomb, true, own});
   if (mu > 0.0) {
     plans.push_back({"iterative", mu, FrictionModel::coulomb, false, own});
     plans.push_back({"iterative", mu, FrictionModel::seed, false, own});
-    const int limit = options.frictional_reference_fibres;
-    if (limit == 0 || scene.fibres.size() <= static_cast<std::size_t>(limit))
+    if (reference && within(scene, options.frictional_reference_fibres))
       plans.push_back({"fem", mu, FrictionModel::coulomb, false, own});
   }
   plans.push_back({"iterative", 0.0, FrictionModel::coulomb, true, other});
-  plans.push_back({"fem", 0.0, FrictionModel::coulomb, true, other});
+  if (reference) plans.push_back({"fem", 0.0, FrictionModel::coulomb, true, other});
   return plans;
 }
 

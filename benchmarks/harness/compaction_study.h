@@ -33,8 +33,10 @@ struct CompactionStudyOptions {
   /// Steps (1-based) whose state the iterative runs keep for the cross-section pictures, besides
   /// the last (every run keeps its last).
   std::vector<int> sections;
-  /// The reference with friction only on scenes of at most this many fibres (0: on every
-  /// scene): on the deformed fibres its frictional sequence is the study's costliest part.
+  /// The reference only on scenes of at most this many fibres (0: on every scene), and with
+  /// friction only on those of at most `frictional_reference_fibres`: on the deformed fibres its
+  /// sequences are the study's costliest part.
+  int reference_fibres = 0;
   int frictional_reference_fibres = 0;
   bool quiet = false;
 };

@@ -8,6 +8,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
+#include <tuple>
 
 #include "input_error.h"
 
@@ -135,7 +136,8 @@ TEST(CompactionStudy, WritesCurvesFitsAndAgreement) {
 }
 
 // With friction: the iterative solver with Coulomb's law and with the seed's rule, and the
-// reference with Coulomb's law — but only on scenes within --frictional-reference-fibres.
+// reference with Coulomb's law — but only on scenes within --frictional-reference-fibres, and the
+// reference at all only on those within --reference-fibres.
 TEST(CompactionStudy, TheFrictionalReferenceOnlyWithinItsFibreLimit) {
   Scene s;
   s.name = "made_up_frictional_tow";
@@ -158,23 +160,29 @@ TEST(CompactionStudy, TheFrictionalReferenceOnlyWithinItsFibreLimit) {
     r.solver = "fem";
     return r;
   };
-  auto frictional_references = [&](int limit) {
-    const std::string folder =
-        ::testing::TempDir() + "compaction_study_limit_" + std::to_string(limit);
+  // (runs, reference runs, frictional reference runs) with the two limits.
+  auto references = [&](int reference_limit, int frictional_limit) {
+    const std::string folder = ::testing::TempDir() + "compaction_study_limit_" +
+                               std::to_string(reference_limit) + "_" +
+                               std::to_string(frictional_limit);
     std::filesystem::remove_all(folder);
     CompactionStudyOptions options;
     options.quiet = true;
-    options.frictional_reference_fibres = limit;
-    int count = 0, runs = 0;
+    options.reference_fibres = reference_limit;
+    options.frictional_reference_fibres = frictional_limit;
+    int runs = 0, fem = 0, frictional = 0;
     for (const CompactionRun& r : run_compaction_study({s}, options, solvers, folder).at(0).runs) {
       ++runs;
-      count += r.solver == "fem" && r.mu > 0.0;
+      fem += r.solver == "fem";
+      frictional += r.solver == "fem" && r.mu > 0.0;
     }
-    return std::pair{runs, count};
+    return std::tuple{runs, fem, frictional};
   };
-  EXPECT_EQ(frictional_references(0), std::pair(7, 1));
-  EXPECT_EQ(frictional_references(2), std::pair(7, 1));
-  EXPECT_EQ(frictional_references(1), std::pair(6, 0));
+  EXPECT_EQ(references(0, 0), std::tuple(7, 3, 1));
+  EXPECT_EQ(references(0, 2), std::tuple(7, 3, 1));
+  EXPECT_EQ(references(0, 1), std::tuple(6, 2, 0));
+  EXPECT_EQ(references(2, 0), std::tuple(7, 3, 1));
+  EXPECT_EQ(references(1, 0), std::tuple(4, 0, 0));
 }
 
 TEST(CompactionStudy, RefusesScenesWithoutWallsOrSteps) {
