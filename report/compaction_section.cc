@@ -232,6 +232,83 @@ void fits_rows(Table& t, const CompactionStudyScene& s) {
   }
 }
 
+/// A run as a table column: "iterative", "reference, μ = 0.2 Coulomb", "iterative, linearised".
+std::string column_title(const CompactionRun& r) {
+  std::string title = r.solver == "fem" ? "reference" : "iterative";
+  if (r.friction_model != "none")
+    title += ", μ = " + seconds(r.mu) + (r.friction_model == "seed" ? " seed rule" : " Coulomb");
+  if (r.geometry == "linearised") title += ", linearised";
+  return title;
+}
+
+/// The steps of `s`'s load path, the most any of its runs reached.
+std::size_t steps_of(const CompactionStudyScene& s) {
+  std::size_t steps = 0;
+  for (const CompactionRun& r : s.runs) steps = std::max(steps, r.points.size());
+  return steps;
+}
+
+/// The points the curves of `s` are drawn and fitted from: per step Vf and each run's pressure
+/// (0 where the walls carry none, the status where the step did not converge, empty where the run
+/// had stopped before it). None where no run loads the walls.
+std::optional<Table> points_table(const CompactionStudyScene& s) {
+  Table t;
+  t.label = "compaction_points_" + file_name_slug(s.scene);
+  t.caption = "The points of the compaction curves of " + s.scene +
+              ": the mean wall pressure (MPa) at each step of the load path, per run; a status "
+              "where the step did not converge, nothing where the run had stopped before it.";
+  t.header = {"Step", "Vf"};
+  for (const CompactionRun& r : s.runs) t.header.push_back(column_title(r));
+  bool loaded = false;
+  for (std::size_t k = 0; k < steps_of(s); ++k) {
+    std::vector<std::string> row = {std::to_string(k + 1), ""};
+    for (const CompactionRun& r : s.runs) {
+      if (k >= r.points.size()) {
+        row.push_back("");
+        continue;
+      }
+      const CompactionPoint& p = r.points[k];
+      row[1] = fixed3(p.fibre_volume_fraction);
+      row.push_back(p.status == "converged" ? sci(p.pressure) : p.status);
+      loaded |= p.status == "converged" && p.pressure > 0.0;
+    }
+    t.rows.push_back(row);
+  }
+  if (!loaded) return std::nullopt;
+  return t;
+}
+
+/// What each step of `s` cost the iterative solver: iterations and seconds, per run.
+Table cost_table(const CompactionStudyScene& s) {
+  Table t;
+  t.label = "compaction_cost_" + file_name_slug(s.scene);
+  t.caption = "What each step of " + s.scene +
+              "'s load path cost the iterative solver, per run: iterations and wall time (s), "
+              "each step warm-started from the last.";
+  t.header = {"Step", "Vf"};
+  for (const CompactionRun& r : s.runs)
+    if (r.solver == "iterative") {
+      t.header.push_back(column_title(r) + ": iterations");
+      t.header.push_back("time (s)");
+    }
+  for (std::size_t k = 0; k < steps_of(s); ++k) {
+    std::vector<std::string> row = {std::to_string(k + 1), ""};
+    for (const CompactionRun& r : s.runs) {
+      if (r.solver != "iterative") continue;
+      if (k >= r.points.size()) {
+        row.insert(row.end(), {"", ""});
+        continue;
+      }
+      const CompactionPoint& p = r.points[k];
+      row[1] = fixed3(p.fibre_volume_fraction);
+      row.push_back(std::to_string(p.iterations));
+      row.push_back(seconds(p.time_s));
+    }
+    t.rows.push_back(row);
+  }
+  return t;
+}
+
 Table agreement_table() {
   Table agreement;
   agreement.label = "compaction_agreement";
@@ -330,6 +407,9 @@ void write_compaction_section(ReportPage& page, const std::vector<StoredCompacti
     if (auto finding = compaction_finding(studies)) page.finding(*finding);
   }
   if (!agreement.rows.empty()) page.table(agreement);
+  for (const StoredCompactionStudy& stored : studies)
+    if (auto points = points_table(stored.study)) page.table(*points);
+  page.table(cost_table(studies.back().study));
 }
 
 }  // namespace fibrecheck

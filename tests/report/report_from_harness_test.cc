@@ -185,8 +185,8 @@ TEST_F(ReportFromHarness, EveryStudyIsReadAndReported) {
   const fs::path out = *folder_ / "report";
   const ReportSummary summary = write_report(data, out.string());
   // Comparison, slices, speed-up, tolerance outcomes, effectivity, step sweep, stiffness,
-  // catalogue, compaction fits and agreement, the friction rules, scale.
-  EXPECT_EQ(summary.tables, 12);
+  // catalogue, compaction fits, agreement, points and cost, the friction rules, scale.
+  EXPECT_EQ(summary.tables, 14);
   EXPECT_TRUE(summary.missing.empty()) << summary.missing.front();
   const std::string md = slurp(out / "report.md");
   for (const char* section :
@@ -229,6 +229,16 @@ TEST_F(ReportFromHarness, TheTablesHoldWhatTheStudiesReturned) {
               std::string::npos)
         << r.label();
   }
+  // The points the curves are drawn from: the last step's pressure of every run, in one row.
+  const CompactionStudyScene& tow = run_->compaction.at(0);
+  const CompactionPoint& first = tow.runs.front().points.back();
+  std::string row = "| " + std::to_string(first.step) + " | " + fixed3(first.fibre_volume_fraction);
+  for (const CompactionRun& r : tow.runs) {
+    ASSERT_EQ(r.points.size(), tow.runs.front().points.size()) << r.label();
+    const CompactionPoint& q = r.points.back();
+    row += " | " + (q.status == "converged" ? sci(q.pressure) : q.status);
+  }
+  EXPECT_NE(md.find(row + " |"), std::string::npos) << row;
   EXPECT_NE(md.find("| iterative, μ = 0.2 (Coulomb) | "), std::string::npos);
   EXPECT_NE(md.find("| iterative, μ = 0.2 (seed rule) | "), std::string::npos);
   // The friction study's row: both runs of the tow side by side.
