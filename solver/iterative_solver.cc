@@ -726,10 +726,19 @@ bool IterativeSolver::return_to_best_update() {
 void IterativeSolver::report_progress(long iteration, Clock::time_point start) {
   if (!options_.progress || seconds_since(last_progress_) < options_.progress_interval_s) return;
   last_progress_ = Clock::now();
-  options_.progress({iteration, options_.max_iterations, residuals_.overlap, residuals_.gap_force,
-                     options_.overlap_tolerance,
-                     working_set_.active() ? working_set_.candidates() : state_.contacts.size(),
-                     seconds_since(start)});
+  IterationProgress p;
+  p.iteration = iteration;
+  p.max_iterations = options_.max_iterations;
+  p.overlap_residual = residuals_.overlap;
+  p.gap_force_residual = residuals_.gap_force;
+  p.tolerance = options_.overlap_tolerance;
+  p.working_tolerance = overlap_tolerance_;
+  p.normal_updates = geometric_updates_;
+  p.radius_updates = tresca_.updates();
+  p.coulomb = coulomb_;
+  p.contacts = working_set_.active() ? working_set_.candidates() : state_.contacts.size();
+  p.elapsed_s = seconds_since(start);
+  options_.progress(p);
 }
 
 std::string IterativeSolver::capped_message() const {
@@ -746,6 +755,12 @@ std::string IterativeSolver::capped_message() const {
     out << "; the normals had not settled: each of the " << geometric_updates_
         << " updates of the normals to the displaced centres left at least " << least_after_update_
         << " mm";
+  if (overlap_tolerance_ < options_.overlap_tolerance)
+    out << "; its force tolerance had made t_d " << overlap_tolerance_ << " mm";
+  if (coulomb_)
+    out << "; the Tresca radii had been set " << tresca_.updates()
+        << " times, the last inner problem's stick residual " << tresca_figures_.stick_residual
+        << " mm, slip residual " << tresca_figures_.slip_residual << " mm";
   if (options_.rule != UpdateRule::accelerated)
     out << "; rule accelerated needs far fewer iterations where the compliance is "
            "ill-conditioned (line contacts near supports, tows)";

@@ -16,6 +16,12 @@ struct IterationProgress {
   double overlap_residual = 0.0;    ///< mm
   double gap_force_residual = 0.0;  ///< mm
   double tolerance = 0.0;           ///< t_d, mm
+  /// The t_d the iteration works to now: smaller than `tolerance` where the force tolerance made
+  /// it so.
+  double working_tolerance = 0.0;
+  long normal_updates = 0;  ///< of the normals to the displaced centres, so far
+  long radius_updates = 0;  ///< of the Tresca radii (Coulomb friction), so far
+  bool coulomb = false;
   std::size_t contacts = 0;
   double elapsed_s = 0.0;
   int step = 0;   ///< of a load path, from 1

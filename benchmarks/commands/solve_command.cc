@@ -30,8 +30,12 @@ std::function<void(const IterationProgress&)> progress_printer(bool terminal) {
     if (p.steps > 0) line << "step " << p.step << " of " << p.steps << ", ";
     line << "iteration " << p.iteration << "/" << p.max_iterations << ", " << p.contacts
          << " candidate contacts, overlap " << p.overlap_residual << " mm, gap-force "
-         << p.gap_force_residual << " mm (tolerance " << p.tolerance << "), " << std::fixed
-         << std::setprecision(1) << p.elapsed_s << " s";
+         << p.gap_force_residual << " mm (tolerance " << p.tolerance;
+    if (p.working_tolerance < p.tolerance) line << ", now " << p.working_tolerance;
+    line << ")";
+    if (p.normal_updates > 0) line << ", " << p.normal_updates << " updates of the normals";
+    if (p.coulomb) line << ", " << p.radius_updates << " of the Tresca radii";
+    line << ", " << std::fixed << std::setprecision(1) << p.elapsed_s << " s";
     if (terminal)
       std::cerr << "\r" << line.str() << "\033[K" << std::flush;
     else

@@ -137,6 +137,42 @@ TEST(CoulombFriction, TheWorkingSetChangesNoAnswer) {
   EXPECT_LT(on.friction->slip_residual, s.overlap_tolerance());
 }
 
+// A frictional run that runs out of iterations says how far Coulomb's law had got — how often
+// the Tresca radii were set and the inner problem's residuals — and its progress reports count the
+// updates of the radii and of the normals as they happen.
+TEST(CoulombFriction, RunningOutSaysWhereTheTrescaRadiiStood) {
+  TowOptions tow;
+  tow.fibres = 19;
+  tow.slices = 20;
+  tow.seed = 2;
+  tow.volume_fraction = 0.35;
+  tow.compaction = 0.75;
+  tow.friction = 0.2;
+  const Scene s = generate_tow(tow);
+  SolverOptions options = SolverOptions::from_scene(s);
+  const Result full = solve_iteratively(s, options);
+  ASSERT_EQ(full.status, Status::converged) << full.message;
+  ASSERT_GT(full.friction->fixed_point_updates, 2);
+  options.max_iterations = full.iterations / 2;
+  options.progress_interval_s = 0.0;
+  std::vector<IterationProgress> seen;
+  options.progress = [&](const IterationProgress& p) { seen.push_back(p); };
+  const Result capped = solve_iteratively(s, options);
+  ASSERT_EQ(capped.status, Status::max_iterations);
+  const std::string set = "the Tresca radii had been set " +
+                          std::to_string(capped.friction->fixed_point_updates) + " times";
+  EXPECT_NE(capped.message.find(set), std::string::npos) << capped.message;
+  EXPECT_NE(capped.message.find("stick residual"), std::string::npos) << capped.message;
+  ASSERT_FALSE(seen.empty());
+  EXPECT_TRUE(seen.back().coulomb);
+  EXPECT_EQ(seen.front().radius_updates, 0);
+  EXPECT_GT(seen.back().radius_updates, 0);
+  EXPECT_LE(seen.back().radius_updates, capped.friction->fixed_point_updates);
+  EXPECT_LE(seen.back().normal_updates, capped.geometric_updates);
+  for (std::size_t k = 1; k < seen.size(); ++k)
+    EXPECT_GE(seen[k].radius_updates, seen[k - 1].radius_updates);
+}
+
 // The seed's rule (§4.3.4, Eqs. 4.29–4.33): the previous resultant split on the deformed centres'
 // normal, capped. Under a side load below μN the centres' normal turns as B moves, so the rule
 // drives the friction to the cap: it never lets the contact stick as Coulomb's law does, and B
