@@ -211,10 +211,16 @@ Table fits_table() {
   fits.caption =
       "Compaction runs: how each load path ended, the last step's Vf and pressure, and the fits "
       "on the steps with wall force (– where too few steps carry force: van Wyk needs two, Toll "
-      "three).";
+      "three; Toll's n is fitted up to 30, and ≥ 30 says the curve is steeper than that).";
   fits.header = {"Scene",  "Run",   "Status", "Steps",  "Vf",       "p (MPa)", "vW k",
                  "vW Vf0", "vW R2", "Toll k", "Toll n", "Toll Vf0", "Toll R2", "Time (s)"};
   return fits;
+}
+
+/// Toll's n, or "≥ 30" where the fit ended at the largest exponent it tries.
+std::string toll_exponent(const PowerLawFit& toll) {
+  if (toll.n >= kTollLargestExponent) return "≥ " + seconds(kTollLargestExponent);
+  return fixed3(toll.n);
 }
 
 void fits_rows(Table& t, const CompactionStudyScene& s) {
@@ -227,8 +233,8 @@ void fits_rows(Table& t, const CompactionStudyScene& s) {
                       std::to_string(steps) + "/" + std::to_string(r.points.size()),
                       last ? fixed3(last->fibre_volume_fraction) : "–",
                       last ? sci(last->pressure) : "–", sci(r.van_wyk.k), fixed3(r.van_wyk.vf0),
-                      fixed3(r.van_wyk.r2), sci(r.toll.k), fixed3(r.toll.n), fixed3(r.toll.vf0),
-                      fixed3(r.toll.r2), seconds(r.time_s)});
+                      fixed3(r.van_wyk.r2), sci(r.toll.k), toll_exponent(r.toll),
+                      fixed3(r.toll.vf0), fixed3(r.toll.r2), seconds(r.time_s)});
   }
 }
 

@@ -1,5 +1,7 @@
 #include "power_law_fit.h"
 
+#include <cmath>
+
 #include "json_number.h"
 
 namespace fibrecheck {
@@ -38,7 +40,8 @@ PowerLawFit fit_toll(const std::vector<double>& vf, const std::vector<double>& p
   PowerLawFit best;
   best.points = static_cast<int>(vf.size());
   if (vf.size() < 3) return best;
-  for (int i = 100; i <= 3000; ++i) {
+  const int last = static_cast<int>(std::lround(100.0 * kTollLargestExponent));
+  for (int i = 100; i <= last; ++i) {
     const PowerLawFit f = fit_power_law(vf, pressure, modulus, 0.01 * i);
     if (f.valid && std::isfinite(f.r2) && (!best.valid || f.r2 > best.r2)) best = f;
   }

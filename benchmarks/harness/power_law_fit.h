@@ -18,7 +18,11 @@ struct PowerLawFit {
 /// Vfⁿ; R² of the pressures. Needs two points with different Vf.
 PowerLawFit fit_power_law(const std::vector<double>& vf, const std::vector<double>& pressure,
                           double modulus, double n);
-/// Toll's law: the n in [1, 30] (steps of 0.01) with the best R². Needs three points.
+/// The largest exponent Toll's law is fitted with. A fit that ends there asks for a steeper law
+/// than any power within reach: its n is a bound, not a measurement.
+constexpr double kTollLargestExponent = 30.0;
+/// Toll's law: the n in [1, kTollLargestExponent] (steps of 0.01) with the best R². Needs three
+/// points.
 PowerLawFit fit_toll(const std::vector<double>& vf, const std::vector<double>& pressure,
                      double modulus);
 

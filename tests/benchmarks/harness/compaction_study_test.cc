@@ -42,6 +42,16 @@ TEST(CompactionFit, TollFindsItsExponent) {
   EXPECT_LT(fit_power_law(vf, law(vf, 80000, 3e-3, 8.0, 0.4), 80000, 3.0).r2, f.r2);
 }
 
+// A curve steeper than any power within reach (here n = 45) ends Toll's fit at its largest
+// exponent: the report then says n ≥ 30 instead of a measured 30.
+TEST(CompactionFit, TollEndsAtItsLargestExponentOnASteeperCurve) {
+  const std::vector<double> vf = {0.59, 0.6, 0.61, 0.62, 0.63, 0.64, 0.65};
+  const PowerLawFit f = fit_toll(vf, law(vf, 80000, 1e-2, 45.0, 0.58), 80000);
+  ASSERT_TRUE(f.valid);
+  EXPECT_EQ(f.n, kTollLargestExponent);
+  EXPECT_LT(f.r2, 1.0);
+}
+
 TEST(CompactionFit, TooFewPointsGiveNoFit) {
   EXPECT_FALSE(fit_power_law({0.45}, {1e-3}, 80000, 3.0).valid);
   EXPECT_FALSE(fit_toll({0.45, 0.5}, {1e-3, 2e-3}, 80000).valid);
