@@ -238,14 +238,19 @@ void fits_rows(Table& t, const CompactionStudyScene& s) {
   }
 }
 
-/// A run as a table column: "iterative", "reference, μ = 0.2 Coulomb", "iterative, linearised".
+/// A run as a short table column: "it.", "ref. μ 0.2 Coulomb", "it. lin." (the captions say
+/// what the abbreviations stand for).
 std::string column_title(const CompactionRun& r) {
-  std::string title = r.solver == "fem" ? "reference" : "iterative";
+  std::string title = r.solver == "fem" ? "ref." : "it.";
   if (r.friction_model != "none")
-    title += ", μ = " + seconds(r.mu) + (r.friction_model == "seed" ? " seed rule" : " Coulomb");
-  if (r.geometry == "linearised") title += ", linearised";
+    title += " μ " + seconds(r.mu) + (r.friction_model == "seed" ? " seed rule" : " Coulomb");
+  if (r.geometry == "linearised") title += " lin.";
   return title;
 }
+
+const char* const kColumnKey =
+    " Columns: it. the iterative solver, ref. the reference, lin. the linearised contact (the "
+    "others on the deformed fibres), μ and the friction model where there is friction.";
 
 /// The steps of `s`'s load path, the most any of its runs reached.
 std::size_t steps_of(const CompactionStudyScene& s) {
@@ -255,19 +260,21 @@ std::size_t steps_of(const CompactionStudyScene& s) {
 }
 
 /// The points the curves of `s` are drawn and fitted from: per step Vf and each run's pressure
-/// (0 where the walls carry none, the status where the step did not converge, empty where the run
-/// had stopped before it). None where no run loads the walls.
+/// (the status where the step did not converge, empty where the run had stopped before it), on
+/// the steps where some run loads the walls or fails. None where no run loads the walls.
 std::optional<Table> points_table(const CompactionStudyScene& s) {
   Table t;
   t.label = "compaction_points_" + file_name_slug(s.scene);
   t.caption = "The points of the compaction curves of " + s.scene +
-              ": the mean wall pressure (MPa) at each step of the load path, per run; a status "
-              "where the step did not converge, nothing where the run had stopped before it.";
+              ": the mean wall pressure (MPa) at each step of the load path where a run loads "
+              "the walls, per run; a status where the step did not converge, nothing where the "
+              "run had stopped before it." +
+              kColumnKey;
   t.header = {"Step", "Vf"};
   for (const CompactionRun& r : s.runs) t.header.push_back(column_title(r));
-  bool loaded = false;
   for (std::size_t k = 0; k < steps_of(s); ++k) {
     std::vector<std::string> row = {std::to_string(k + 1), ""};
+    bool shown = false;
     for (const CompactionRun& r : s.runs) {
       if (k >= r.points.size()) {
         row.push_back("");
@@ -275,12 +282,13 @@ std::optional<Table> points_table(const CompactionStudyScene& s) {
       }
       const CompactionPoint& p = r.points[k];
       row[1] = fixed3(p.fibre_volume_fraction);
-      row.push_back(p.status == "converged" ? sci(p.pressure) : p.status);
-      loaded |= p.status == "converged" && p.pressure > 0.0;
+      const bool converged = p.status == "converged";
+      row.push_back(converged ? sci(p.pressure) : p.status);
+      shown |= !converged || p.pressure > 0.0;
     }
-    t.rows.push_back(row);
+    if (shown) t.rows.push_back(row);
   }
-  if (!loaded) return std::nullopt;
+  if (t.rows.empty()) return std::nullopt;
   return t;
 }
 
@@ -289,26 +297,23 @@ Table cost_table(const CompactionStudyScene& s) {
   Table t;
   t.label = "compaction_cost_" + file_name_slug(s.scene);
   t.caption = "What each step of " + s.scene +
-              "'s load path cost the iterative solver, per run: iterations and wall time (s), "
-              "each step warm-started from the last.";
+              "'s load path cost the iterative solver, per run: iterations (wall time in "
+              "seconds), each step warm-started from the last." +
+              kColumnKey;
   t.header = {"Step", "Vf"};
   for (const CompactionRun& r : s.runs)
-    if (r.solver == "iterative") {
-      t.header.push_back(column_title(r) + ": iterations");
-      t.header.push_back("time (s)");
-    }
+    if (r.solver == "iterative") t.header.push_back(column_title(r));
   for (std::size_t k = 0; k < steps_of(s); ++k) {
     std::vector<std::string> row = {std::to_string(k + 1), ""};
     for (const CompactionRun& r : s.runs) {
       if (r.solver != "iterative") continue;
       if (k >= r.points.size()) {
-        row.insert(row.end(), {"", ""});
+        row.push_back("");
         continue;
       }
       const CompactionPoint& p = r.points[k];
       row[1] = fixed3(p.fibre_volume_fraction);
-      row.push_back(std::to_string(p.iterations));
-      row.push_back(seconds(p.time_s));
+      row.push_back(std::to_string(p.iterations) + " (" + seconds(p.time_s) + " s)");
     }
     t.rows.push_back(row);
   }
