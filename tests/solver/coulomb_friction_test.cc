@@ -57,14 +57,8 @@ TEST(CoulombFriction, TheOrderOfLoadsMatters) {
   testing::check_path_dependence(solve, kTolerance);
 }
 
-// A tow compacted with friction in twelve steps, from first wall contact to Vf ≈ 0.59, in both
-// contact geometries: every step converges and its answer satisfies Coulomb's law as the result
-// reports it — slips at sticking contacts and slips against the friction of slipping ones below
-// t_d, no friction beyond μP — and the contact criterion. Under the deformed geometry this needs
-// the friction to turn with its tangent at full size, and the Tresca radii to be judged against
-// the disks the inner problem had: otherwise contacts slipping on their circle are taken for
-// sticking ones with all their slip, and the run ends without progress.
-TEST(CoulombFriction, CompactedTowConvergesEveryStepInBothGeometries) {
+// A 19-fibre tow with μ = 0.2 compacted in twelve steps, from F = 0.95 to 0.7.
+TowOptions compacted_tow_19() {
   TowOptions tow;
   tow.fibres = 19;
   tow.slices = 20;
@@ -74,6 +68,18 @@ TEST(CoulombFriction, CompactedTowConvergesEveryStepInBothGeometries) {
   tow.first_compaction = 0.95;
   tow.compaction = 0.7;
   tow.friction = 0.2;
+  return tow;
+}
+
+// A tow compacted with friction in twelve steps, from first wall contact to Vf ≈ 0.59, in both
+// contact geometries: every step converges and its answer satisfies Coulomb's law as the result
+// reports it — slips at sticking contacts and slips against the friction of slipping ones below
+// t_d, no friction beyond μP — and the contact criterion. Under the deformed geometry this needs
+// the friction to turn with its tangent at full size, and the Tresca radii to be judged against
+// the disks the inner problem had: otherwise contacts slipping on their circle are taken for
+// sticking ones with all their slip, and the run ends without progress.
+TEST(CoulombFriction, CompactedTowConvergesEveryStepInBothGeometries) {
+  const TowOptions tow = compacted_tow_19();
   for (ContactGeometryModel geometry :
        {ContactGeometryModel::deformed, ContactGeometryModel::linearised}) {
     SCOPED_TRACE(to_string(geometry));
@@ -104,15 +110,7 @@ TEST(CoulombFriction, CompactedTowConvergesEveryStepInBothGeometries) {
 // pressures, of order 1e-3 MPa, agree to 1e-4 of their size (the 100-fibre sequence of the same
 // kind agrees to 1e-6).
 TEST(CoulombFriction, TheWorkingSetChangesNoAnswer) {
-  TowOptions tow;
-  tow.fibres = 19;
-  tow.slices = 20;
-  tow.seed = 2;
-  tow.volume_fraction = 0.35;
-  tow.steps = 12;
-  tow.first_compaction = 0.95;
-  tow.compaction = 0.7;
-  tow.friction = 0.2;
+  const TowOptions tow = compacted_tow_19();
   const Scene s = generate_tow(tow);
   SolverOptions options = SolverOptions::from_scene(s);
   const Result on = solve_iteratively(s, options);
@@ -141,13 +139,9 @@ TEST(CoulombFriction, TheWorkingSetChangesNoAnswer) {
 // the Tresca radii were set and the inner problem's residuals — and its progress reports count the
 // updates of the radii and of the normals as they happen.
 TEST(CoulombFriction, RunningOutSaysWhereTheTrescaRadiiStood) {
-  TowOptions tow;
-  tow.fibres = 19;
-  tow.slices = 20;
-  tow.seed = 2;
-  tow.volume_fraction = 0.35;
+  TowOptions tow = compacted_tow_19();
+  tow.steps = 0;
   tow.compaction = 0.75;
-  tow.friction = 0.2;
   const Scene s = generate_tow(tow);
   SolverOptions options = SolverOptions::from_scene(s);
   const Result full = solve_iteratively(s, options);
