@@ -90,9 +90,21 @@ step "compaction study: the seed's compaction test case, generated tows of 19 an
 ./build/fibrecheck study compaction scenes/compaction_test.json "$out/scenes/tow_19_compaction.json" \
   "$out/scenes/tow_100_compaction.json" --steps 6 --final-compaction 0.7 --sections 10 \
   --frictional-reference-fibres 19 --out "$out/study/compaction"
-step "friction study: the seed's friction rule against Coulomb friction, tows of 19 and 100 fibres over mu and F"
+# The 1 000-fibre studies take more than an hour: their points are stored in benchmarks/stored/ and
+# copied in; a folder without them runs them afresh.
+step "compaction study: a generated 1 000-fibre tow, 12 steps from its first wall contact to Vf 0.65 (stored points)"
+./build/fibrecheck generate tow --fibres 1000 --slices 100 --seed 2 --steps 12 --first-compaction 0.855 \
+  --final-compaction 0.806 --friction 0.2 --out "$out/scenes/tow_1000_compaction.json" >/dev/null
+mkdir -p "$out/study/compaction_1000" "$out/study/friction_1000"
+cp -n benchmarks/stored/compaction_1000.points.jsonl "$out/study/compaction_1000/compaction_study.points.jsonl"
+cp -n benchmarks/stored/friction_1000.points.jsonl "$out/study/friction_1000/friction_study.points.jsonl"
+./build/fibrecheck study compaction "$out/scenes/tow_1000_compaction.json" --reference-fibres 100 \
+  --out "$out/study/compaction_1000"
+step "friction study: the seed's friction rule against Coulomb friction, tows of 19 and 100 fibres over mu and F, and of 1 000 (stored points) at F 0.9 and 0.8"
 ./build/fibrecheck study friction --fibres 19,100 --mu 0.1,0.2,0.4 --compactions 0.9,0.8,0.7 \
   --out "$out/study/friction" -q
+./build/fibrecheck study friction --fibres 1000 --mu 0.1,0.2,0.4 --compactions 0.9,0.8 \
+  --out "$out/study/friction_1000" -q
 step "scale study: generated tows of 100 to 3000 fibres; the reference up to 1000 on two processes; Siconos at 100"
 ./build/fibrecheck study scale --fibres 100,300,1000,3000 --rules accelerated \
   --reference-fibres 100,300,1000 --peer-fibres 100 --out "$out/study/scale" -q
