@@ -220,8 +220,7 @@ IterativeSolver::IterativeSolver(const Scene& scene, const SolverOptions& option
       rule_(make_force_update(options.rule, options.c, superposition_, fibres_, state_)),
       working_set_(superposition_, fibres_, scene, detector_.geometry(), margin_,
                    options.overlap_tolerance),
-      use_working_set_(options.working_set && (mu_ == 0.0 || coulomb_) &&
-                       rule_->allows_working_set()),
+      use_working_set_(mu_ == 0.0 && rule_->allows_working_set()),
       tresca_(mu_, options.overlap_tolerance),
       lagged_normals_(scene.contact.geometry == ContactGeometryModel::deformed &&
                       options.rule != UpdateRule::seed),

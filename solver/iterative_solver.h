@@ -40,9 +40,6 @@ struct SolverOptions {
   long max_iterations = 100000;
   /// Candidate contacts are found this fraction of the smallest radius before they touch.
   double margin_factor = 0.1;
-  /// Rules auto and accelerated iterate on the candidates that push or come near touching (the
-  /// working set); false: on every candidate. The answer is the same within t_d.
-  bool working_set = true;
   /// Called about once a second with the state of the iteration.
   std::function<void(const IterationProgress&)> progress;
   double progress_interval_s = 1.0;

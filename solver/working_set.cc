@@ -39,18 +39,8 @@ bool WorkingSet::needed(const IterationState& state, int i, bool first) const {
   if (predicted > -2.0 * tolerance_) return true;
   if (k < 0) return false;
   const bool momentum = state.iterate.size() == static_cast<Eigen::Index>(state.contacts.size());
-  if (state.contacts[k].force > 0.0 ||
-      (momentum && (state.iterate[k] > 0.0 || state.previous[k] > 0.0)))
-    return true;
-  return frictional(state) &&
-         (state.bound[k] > 0.0 || !state.contacts[k].friction.isZero(0.0) ||
-          !state.friction_iterate[k].isZero(0.0) || !state.previous_friction[k].isZero(0.0));
-}
-
-bool WorkingSet::frictional(const IterationState& state) {
-  const std::size_t n = state.contacts.size();
-  return static_cast<std::size_t>(state.bound.size()) == n && state.friction_iterate.size() == n &&
-         state.previous_friction.size() == n;
+  return state.contacts[k].force > 0.0 ||
+         (momentum && (state.iterate[k] > 0.0 || state.previous[k] > 0.0));
 }
 
 bool WorkingSet::revise(IterationState& state) {
@@ -72,16 +62,11 @@ bool WorkingSet::revise(IterationState& state) {
 }
 
 void WorkingSet::rebuild(IterationState& state, std::vector<int> members) {
-  // Members keep their state and momentum, newcomers start from P = 0 and no friction (a Tresca
-  // radius of 0 until the radii are next set).
+  // Members keep their state and momentum, newcomers start from P = 0.
   const bool momentum = state.iterate.size() == static_cast<Eigen::Index>(state.contacts.size());
-  const bool friction = frictional(state);
   std::vector<Contact> working(members.size());
   Eigen::VectorXd iterate = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(members.size()));
-  Eigen::VectorXd previous = iterate, bound = iterate;
-  std::vector<Eigen::Vector3d> friction_iterate(friction ? members.size() : 0,
-                                                Eigen::Vector3d::Zero());
-  std::vector<Eigen::Vector3d> previous_friction = friction_iterate;
+  Eigen::VectorXd previous = iterate;
   for (std::size_t j = 0; j < members.size(); ++j) {
     const int k = slot_[members[j]];
     working[j] = k >= 0 ? state.contacts[k] : candidates_[members[j]];
@@ -89,22 +74,12 @@ void WorkingSet::rebuild(IterationState& state, std::vector<int> members) {
     if (k < 0 && geometry_.deformed())
       geometry_.follow(working[j], u_a_[members[j]], u_b_[members[j]]);
     working[j].overlap = synced_overlap_[members[j]];
-    if (k < 0) working[j].force = 0.0, working[j].friction.setZero();
+    if (k < 0) working[j].force = 0.0;
     if (k >= 0 && momentum) iterate[j] = state.iterate[k], previous[j] = state.previous[k];
-    if (k >= 0 && friction) {
-      bound[j] = state.bound[k];
-      friction_iterate[j] = state.friction_iterate[k];
-      previous_friction[j] = state.previous_friction[k];
-    }
   }
   state.contacts = std::move(working);
   members_ = std::move(members);
   if (momentum) state.iterate = std::move(iterate), state.previous = std::move(previous);
-  if (friction) {
-    state.bound = std::move(bound);
-    state.friction_iterate = std::move(friction_iterate);
-    state.previous_friction = std::move(previous_friction);
-  }
   superposition_.attach(state.contacts);
   state.forces_gathered = false;
 }
@@ -112,13 +87,9 @@ void WorkingSet::rebuild(IterationState& state, std::vector<int> members) {
 void WorkingSet::leave(IterationState& state) {
   if (!active_) return;
   const bool momentum = state.iterate.size() == static_cast<Eigen::Index>(state.contacts.size());
-  const bool friction = frictional(state);
   Eigen::VectorXd iterate = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(candidates_.size()));
-  Eigen::VectorXd previous = iterate, bound = iterate;
-  std::vector<Eigen::Vector3d> friction_iterate(friction ? candidates_.size() : 0,
-                                                Eigen::Vector3d::Zero());
-  std::vector<Eigen::Vector3d> previous_friction = friction_iterate;
-  for (Contact& c : candidates_) c.force = 0.0, c.friction.setZero();
+  Eigen::VectorXd previous = iterate;
+  for (Contact& c : candidates_) c.force = 0.0;
   // On the deformed fibres the others take the normals of their displaced centres at the last
   // revision, as a newcomer does: measured along an older normal their overlaps would be too large.
   if (geometry_.deformed() && u_a_.size() == candidates_.size()) {
@@ -130,20 +101,10 @@ void WorkingSet::leave(IterationState& state) {
     candidates_[members_[i]] = state.contacts[i];
     if (momentum)
       iterate[members_[i]] = state.iterate[i], previous[members_[i]] = state.previous[i];
-    if (friction) {
-      bound[members_[i]] = state.bound[i];
-      friction_iterate[members_[i]] = state.friction_iterate[i];
-      previous_friction[members_[i]] = state.previous_friction[i];
-    }
   }
   state.contacts = std::move(candidates_);
   candidates_.clear();
   if (momentum) state.iterate = std::move(iterate), state.previous = std::move(previous);
-  if (friction) {
-    state.bound = std::move(bound);
-    state.friction_iterate = std::move(friction_iterate);
-    state.previous_friction = std::move(previous_friction);
-  }
   superposition_.attach(state.contacts);
   state.forces_gathered = false;
   active_ = false;

@@ -9,10 +9,9 @@
 
 namespace fibrecheck {
 
-/// The working set of frictionless and Coulomb contact under rules auto and accelerated. Most
-/// candidates of a compacted tow never push, and one that neither pushes nor has momentum, friction
-/// or a Tresca radius nor comes near touching keeps P = 0 and F = 0 under the projected update:
-/// the iteration runs on the others. While it is on, the
+/// The working set of frictionless contact under rules auto and accelerated. Most candidates of a
+/// compacted tow never push, and one that neither pushes nor has momentum nor comes near touching
+/// keeps P = 0 under the projected update: the iteration runs on the others. While it is on, the
 /// state's contacts are the working set of the candidate list; the overlaps of every candidate are
 /// measured again at each revision, and a candidate joins when its overlap, extrapolated from its
 /// own rise since the last revision over three more intervals, comes within 2·t_d of touching.
@@ -51,8 +50,6 @@ class WorkingSet {
  private:
   /// The overlap of every candidate under the members' forces; its slot in the state (or −1).
   void measure_candidates(const IterationState& state);
-  /// Whether the state carries Coulomb friction's radii and iterates, one per contact.
-  static bool frictional(const IterationState& state);
   /// Whether candidate i belongs to the set (`first`: the first revision after entering).
   bool needed(const IterationState& state, int i, bool first) const;
   void rebuild(IterationState& state, std::vector<int> members);

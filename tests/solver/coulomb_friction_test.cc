@@ -104,37 +104,6 @@ TEST(CoulombFriction, CompactedTowConvergesEveryStepInBothGeometries) {
   }
 }
 
-// The working set carries each member's friction, Tresca radius and momentum through its
-// revisions, and lets a candidate join without friction: a compacted tow with friction ends where
-// the iteration on every candidate ends. Both stop within t_d of the same Coulomb problem; the
-// pressures, of order 1e-3 MPa, agree to 1e-4 of their size (the 100-fibre sequence of the same
-// kind agrees to 1e-6).
-TEST(CoulombFriction, TheWorkingSetChangesNoAnswer) {
-  const TowOptions tow = compacted_tow_19();
-  const Scene s = generate_tow(tow);
-  SolverOptions options = SolverOptions::from_scene(s);
-  const Result on = solve_iteratively(s, options);
-  options.working_set = false;
-  const Result off = solve_iteratively(s, options);
-  ASSERT_EQ(on.status, Status::converged) << on.message;
-  ASSERT_EQ(off.status, Status::converged) << off.message;
-  ASSERT_EQ(on.steps.size(), off.steps.size());
-  double largest = 0.0;
-  for (const StepResult& step : off.steps)
-    for (const auto& [wall, p] : step.wall_pressure) largest = std::max(largest, p);
-  ASSERT_GT(largest, 0.0);
-  for (std::size_t k = 0; k < on.steps.size(); ++k) {
-    const auto &with = on.steps[k].wall_pressure, &without = off.steps[k].wall_pressure;
-    ASSERT_EQ(with.size(), without.size());
-    for (std::size_t w = 0; w < with.size(); ++w)
-      EXPECT_NEAR(with[w].second, without[w].second, 1e-4 * largest)
-          << "step " << k + 1 << ", wall " << without[w].first;
-  }
-  EXPECT_NEAR(on.strain_energy, off.strain_energy, 1e-4 * off.strain_energy);
-  EXPECT_LT(on.friction->stick_residual, s.overlap_tolerance());
-  EXPECT_LT(on.friction->slip_residual, s.overlap_tolerance());
-}
-
 // A frictional run that runs out of iterations says how far Coulomb's law had got — how often
 // the Tresca radii were set and the inner problem's residuals — and its progress reports count the
 // updates of the radii and of the normals as they happen.
