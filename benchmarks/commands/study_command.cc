@@ -122,13 +122,17 @@ int run_stability(const StudyArguments& args) {
 void print(const CompactionStudyScene& s) {
   std::printf("%s:\n", s.scene.c_str());
   for (const CompactionRun& r : s.runs) {
-    const CompactionPoint* last = r.points.empty() ? nullptr : &r.points.back();
+    // The last step that converged: a step that did not has no pressure to read.
+    const CompactionPoint* last = nullptr;
+    int converged = 0;
+    for (const CompactionPoint& p : r.points)
+      if (p.status == "converged") last = &p, ++converged;
     std::printf(
-        "  %-9s mu %-4g %-8s %-14s %zu steps, last Vf %.3f p %.4g MPa; van Wyk k %.3g "
-        "Vf0 %.3f R2 %.3f; Toll k %.3g n %.2f Vf0 %.3f R2 %.3f\n",
-        r.solver.c_str(), r.mu, r.friction_model.c_str(), r.status.c_str(), r.points.size(),
-        last ? last->fibre_volume_fraction : NAN, last ? last->pressure : NAN, r.van_wyk.k,
-        r.van_wyk.vf0, r.van_wyk.r2, r.toll.k, r.toll.n, r.toll.vf0, r.toll.r2);
+        "  %-9s mu %-4g %-8s %-14s %d of %zu steps converged, the last at Vf %.3f p %.4g MPa; "
+        "van Wyk k %.3g Vf0 %.3f R2 %.3f; Toll k %.3g n %.2f Vf0 %.3f R2 %.3f\n",
+        r.solver.c_str(), r.mu, r.friction_model.c_str(), r.status.c_str(), converged,
+        r.points.size(), last ? last->fibre_volume_fraction : NAN, last ? last->pressure : NAN,
+        r.van_wyk.k, r.van_wyk.vf0, r.van_wyk.r2, r.toll.k, r.toll.n, r.toll.vf0, r.toll.r2);
   }
   for (const CompactionAgreement& a : s.agreement)
     std::printf(
