@@ -82,6 +82,9 @@ std::string reference_summary(const ReferenceCounts& counts, const dealii::Timer
   if (counts.friction)
     summary << ", friction: Tresca updates " << counts.tresca_updates << ", Newton steps "
             << counts.newton_steps;
+  if (counts.newton_finishes > 0)
+    summary << " (" << counts.newton_finishes
+            << " Tresca fixed points stalled and finished by Newton's method on Coulomb's law)";
   if (counts.cg) summary << ", CG iterations " << counts.cg_iterations << " (last mesh)";
   summary << "; wall time per phase (s):";
   for (const auto& [phase, seconds] : timer.get_summary_data(dealii::TimerOutput::total_wall_time))
@@ -115,6 +118,7 @@ void ReferenceSolver::describe_run(Result& r, const std::vector<std::string>& am
   counts.friction = mu_ > 0.0;
   counts.tresca_updates = tresca_updates_;
   counts.newton_steps = newton_steps_;
+  counts.newton_finishes = newton_finishes_;
   counts.cg = options_.beam_solver == BeamSolver::cg_amg;
   counts.cg_iterations = model_ ? model_->cg_iterations() : 0;
   counts.saddle_point = saddle_point();

@@ -58,14 +58,16 @@ struct ReferenceCounts {
   bool friction = false;
   long tresca_updates = 0;
   long newton_steps = 0;
+  long newton_finishes =
+      0;            ///< fixed points that stalled and Newton's method on Coulomb's law settled
   bool cg = false;  ///< the beams solved by CG (BeamSolver::cg_amg)
   long cg_iterations = 0;
   bool saddle_point = false;  ///< the contact problem held as saddle points (ContactAssembly)
 };
 
 /// The message's tail: the unknowns, how the contact problem was held, the active-set passes, the
-/// friction's fixed-point updates and Newton steps, the CG iterations of the last mesh, and the
-/// wall time (s) of each phase.
+/// friction's fixed-point updates, Newton steps and the fixed points Newton finished, the CG
+/// iterations of the last mesh, and the wall time (s) of each phase.
 std::string reference_summary(const ReferenceCounts& counts, const dealii::TimerOutput& timer);
 
 }  // namespace fibrecheck

@@ -273,6 +273,7 @@ void ReferenceSolver::solve_friction(const std::vector<char>& excluded, Start st
   active_set_iterations_ += solved.active_set_passes;
   newton_steps_ += solved.newton_steps;
   tresca_updates_ += solved.updates;
+  newton_finishes_ += solved.finished_by_newton ? 1 : 0;
   if (!solved.settled) {
     trouble_.why = solved.trouble;
     trouble_.friction_unsettled = true;

@@ -189,6 +189,7 @@ class ReferenceSolver {
   ContactProblem exported_;  ///< the problem last solved (only with options_.contact_problem)
   long newton_steps_ = 0;
   long tresca_updates_ = 0;
+  long newton_finishes_ = 0;
 };
 
 }  // namespace fibrecheck

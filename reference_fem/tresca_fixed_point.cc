@@ -97,9 +97,11 @@ struct Relaxation {
 };
 
 /// Why the fixed point did not settle: its last inner problem was not solved, or the radii still
-/// moved the slips by `change` (mm) after the last update.
+/// moved the slips by `change` (mm) after `updates` updates, and Newton's method on Coulomb's law
+/// did not settle from there either (its residual `coulomb`, mm).
 std::string unsettled_message(const FrictionalProblem& problem, const TrescaOptions& options,
-                              bool one_tangent, const FrictionalSolve& inner, double change) {
+                              bool one_tangent, const FrictionalSolve& inner, int updates,
+                              double change, double coulomb) {
   std::ostringstream out;
   out.precision(3);
   if (!inner.settled && one_tangent)
@@ -111,8 +113,8 @@ std::string unsettled_message(const FrictionalProblem& problem, const TrescaOpti
         << inner.residual << " mm";
   else
     out << "the Tresca fixed point of the frictional contact problem did not settle: after "
-        << options.max_updates << " updates the disk radii still move the slips by " << change
-        << " mm";
+        << updates << " updates the disk radii still move the slips by " << change
+        << " mm, and Newton's method on Coulomb's law from there leaves " << coulomb << " mm";
   out << " (mu = " << problem.mu << "; the solution is unique only for small mu)";
   return out.str();
 }
@@ -135,8 +137,8 @@ TrescaSolve tresca_fixed_point(FrictionalProblem& problem, const TrescaOptions& 
   tangential_compliances(problem, compliance, movable);
   FrictionalSolve inner;
   Relaxation relaxation;
-  double change = INFINITY;
-  int updates = 0;
+  double change = INFINITY, lowest = INFINITY;
+  int updates = 0, lowest_at = 0;
   for (updates = 1; updates <= options.max_updates; ++updates) {
     if (one_tangent) {
       Eigen::VectorXd lo, hi;
@@ -155,11 +157,30 @@ TrescaSolve tresca_fixed_point(FrictionalProblem& problem, const TrescaOptions& 
     change = update_radii(problem, compliance, relaxation.factor, r);
     relaxation.adapt(change);
     if (change <= settled) break;
+    if (change < lowest) lowest = change, lowest_at = updates;
+    if (updates - lowest_at >= options.stall_updates) break;
   }
   result.updates = std::min(updates, options.max_updates);
+  double coulomb_residual = INFINITY;
+  if (inner.settled && change > settled) {
+    const Eigen::VectorXd radii = problem.bounds;
+    problem.bounds.resize(0);
+    const Eigen::VectorXd start = r;
+    const FrictionalSolve coulomb = solve_frictional(problem, settled, options.max_newton_steps, r);
+    result.newton_steps += coulomb.newton_steps;
+    problem.bounds = radii;
+    coulomb_residual = coulomb.residual;
+    if (coulomb.settled) {
+      change = coulomb.residual;
+      result.finished_by_newton = true;
+    } else {
+      r = start;
+    }
+  }
   result.settled = inner.settled && !(change > settled);
   if (!result.settled)
-    result.trouble = unsettled_message(problem, options, one_tangent, inner, change);
+    result.trouble = unsettled_message(problem, options, one_tangent, inner, result.updates, change,
+                                       coulomb_residual);
   return result;
 }
 

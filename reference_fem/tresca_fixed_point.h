@@ -13,6 +13,7 @@ struct TrescaOptions {
   int max_active_set_passes = 100000;
   int max_newton_steps = 100;
   int max_updates = 500;
+  int stall_updates = 20;
 };
 
 struct TrescaSolve {
@@ -20,6 +21,8 @@ struct TrescaSolve {
   int updates = 0;       ///< radius updates (fixed-point iterations)
   long active_set_passes = 0;
   long newton_steps = 0;
+  /// The fixed point stalled and Newton's method on Coulomb's law settled it.
+  bool finished_by_newton = false;
   std::string trouble;  ///< why it did not settle (empty when it did)
 };
 
@@ -35,8 +38,15 @@ struct TrescaSolve {
 /// the iterative solver's stopping criterion. Coulomb's law itself, solved by Newton's method,
 /// cycles between sticking and slipping sets on compacted tows; so does the plain map g ← μP,
 /// which is therefore relaxed (halved down to 1/64 while the violation grows, grown again while it
-/// falls). The iterative solver has a Tresca fixed point of its own; this one is written apart
-/// from it on purpose, since the reference must not share a solution method with what it checks.
+/// falls). Where even so the violation reaches no new low in `stall_updates` updates (or the
+/// updates run out), Newton's method on Coulomb's law itself (solve_frictional without bounds)
+/// finishes from the fixed point's last answer: started that close it settles, where from the
+/// frictionless answer it cycles. The fixed point stalls where a contact's friction loads its own
+/// normal force about as much as the normal force moves the radius (μ·∂P/∂g near 1, the radius
+/// creeping a little further at every update), or where contacts that constrain nearly the same
+/// motion share a normal force in a way each Tresca problem settles differently. The iterative
+/// solver has a Tresca fixed point of its own; this one is written apart from it on purpose, since
+/// the reference must not share a solution method with what it checks.
 ///
 /// `r` holds the start (the frictionless answer and the friction carried over) on entry and the
 /// answer on return; `problem.excluded` marks the contacts nothing can move, and `problem.bounds`
