@@ -1,6 +1,7 @@
 #include "frictional_contact.h"
 
 #include <Eigen/Dense>
+#include <Eigen/SparseLU>
 #include <algorithm>
 #include <cmath>
 
@@ -84,13 +85,15 @@ double merit(const FrictionalProblem& p, const NaturalMap& m) {
 }
 
 /// One Newton system on the closed (sticking and slipping) contacts' components, in order:
-/// J·Δr_C = rhs with J = A + B·W_CC block by block, the open contacts' step Δr_O = −r_O.
+/// J·Δr_C = rhs with J = A + B·W_CC block by block, the open contacts' step Δr_O = −r_O. J is as
+/// sparse as W: contacts couple only through the fibres they share.
 struct NewtonSystem {
   std::vector<Eigen::Index> closed;    ///< the closed components
   std::vector<Eigen::Index> position;  ///< per component, its place in `closed` (−1: open)
   Eigen::VectorXd open_part;           ///< r on the open components, zero on the closed
-  Eigen::MatrixXd Wcc, J;
+  Eigen::SparseMatrix<double> J;
   Eigen::VectorXd rhs;
+  double largest_compliance = 0.0;  ///< W_CC's largest diagonal entry
 };
 
 /// The blocks A, B of one closed contact j with k components (see the header for Φ): rows that
@@ -153,22 +156,47 @@ NewtonSystem newton_system(const FrictionalProblem& p, const NaturalMap& map,
   s.open_part = r;
   for (Eigen::Index i : s.closed) s.open_part[i] = 0.0;
   const Eigen::VectorXd W_open = p.W * s.open_part;
-  s.Wcc = Eigen::MatrixXd::Zero(m, m);
+  std::vector<Eigen::Triplet<double>> entries;
   for (Eigen::Index col = 0; col < m; ++col)
     for (Eigen::SparseMatrix<double>::InnerIterator it(p.W, s.closed[col]); it; ++it)
-      if (s.position[it.row()] >= 0) s.Wcc(s.position[it.row()], col) = it.value();
-  s.J = Eigen::MatrixXd::Zero(m, m);
+      if (s.position[it.row()] >= 0) {
+        entries.emplace_back(s.position[it.row()], col, it.value());
+        if (s.position[it.row()] == col)
+          s.largest_compliance = std::max(s.largest_compliance, std::fabs(it.value()));
+      }
+  Eigen::SparseMatrix<double> Wcc(m, m);
+  Wcc.setFromTriplets(entries.begin(), entries.end());
+  std::vector<Eigen::Triplet<double>> a_entries, b_entries;
   s.rhs.resize(m);
   Eigen::MatrixXd A, B;
   for (std::size_t j = 0; j < n; ++j) {
     if (map.state[j] == State::open) continue;
     const Eigen::Index o = p.offset[j], k = p.offset[j + 1] - o, b = s.position[o];
     contact_blocks(p, map, r, j, A, B);
-    s.J.block(b, b, k, k) += A;
-    s.J.middleRows(b, k) += B * s.Wcc.middleRows(b, k);
+    for (Eigen::Index row = 0; row < k; ++row)
+      for (Eigen::Index col = 0; col < k; ++col) {
+        if (A(row, col) != 0.0) a_entries.emplace_back(b + row, b + col, A(row, col));
+        if (B(row, col) != 0.0) b_entries.emplace_back(b + row, b + col, B(row, col));
+      }
     s.rhs.segment(b, k) = -map.phi.segment(o, k) + B * W_open.segment(o, k);
   }
+  Eigen::SparseMatrix<double> Ab(m, m), Bb(m, m);
+  Ab.setFromTriplets(a_entries.begin(), a_entries.end());
+  Bb.setFromTriplets(b_entries.begin(), b_entries.end());
+  s.J = Ab + Bb * Wcc;
   return s;
+}
+
+/// Solves J·x = rhs by a sparse LU; false when it fails, the answer is not finite or it leaves a
+/// residual above 1e-6 of the right-hand side.
+bool sparse_solve(const Eigen::SparseMatrix<double>& J, const Eigen::VectorXd& rhs,
+                  Eigen::VectorXd& x) {
+  Eigen::SparseLU<Eigen::SparseMatrix<double>, Eigen::COLAMDOrdering<int>> lu;
+  lu.compute(J);
+  if (lu.info() != Eigen::Success) return false;
+  x = lu.solve(rhs);
+  return lu.info() == Eigen::Success && x.allFinite() &&
+         (J * x - rhs).norm() <= 1e-6 * (rhs.norm() + 1e-300);
 }
 
 /// The full Newton step (closed components from the system, open ones to zero); false when the
@@ -177,18 +205,20 @@ NewtonSystem newton_system(const FrictionalProblem& p, const NaturalMap& map,
 bool newton_step(const FrictionalProblem& p, const NaturalMap& map, const NewtonSystem& s,
                  Eigen::VectorXd& step) {
   const std::size_t n = p.offset.size() - 1;
-  Eigen::PartialPivLU<Eigen::MatrixXd> lu(s.J);
-  Eigen::VectorXd step_c = lu.solve(s.rhs);
-  if (!step_c.allFinite() || (s.J * step_c - s.rhs).norm() > 1e-6 * (s.rhs.norm() + 1e-300)) {
-    Eigen::MatrixXd Jr = s.J;
-    const double epsilon = 1e-10 * s.Wcc.diagonal().cwiseAbs().maxCoeff();
+  Eigen::VectorXd step_c;
+  if (!sparse_solve(s.J, s.rhs, step_c)) {
+    Eigen::SparseMatrix<double> Jr = s.J;
+    const double epsilon = 1e-10 * s.largest_compliance;
     for (std::size_t j = 0; j < n; ++j) {
       if (map.state[j] == State::open) continue;
-      const Eigen::Index o = p.offset[j], b = s.position[o];
-      Jr(b, b) += map.rho[j] * epsilon;
+      const Eigen::Index b = s.position[p.offset[j]];
+      Jr.coeffRef(b, b) += map.rho[j] * epsilon;
     }
-    step_c = Eigen::PartialPivLU<Eigen::MatrixXd>(Jr).solve(s.rhs);
-    if (!step_c.allFinite()) return false;
+    Eigen::SparseLU<Eigen::SparseMatrix<double>, Eigen::COLAMDOrdering<int>> lu;
+    lu.compute(Jr);
+    if (lu.info() != Eigen::Success) return false;
+    step_c = lu.solve(s.rhs);
+    if (lu.info() != Eigen::Success || !step_c.allFinite()) return false;
   }
   step = -s.open_part;
   for (Eigen::Index c = 0; c < static_cast<Eigen::Index>(s.closed.size()); ++c)

@@ -39,9 +39,10 @@ struct FrictionalSolve {
 /// to max(0, ·) and the tangential part onto the disk of radius μ times it, ρ_j = 1/W_jj. Its
 /// zeros are the solutions; on a fixed set of open, sticking and slipping contacts Φ is linear for
 /// one tangent (slices, walls), so the method ends with the exact answer once the set is right;
-/// for two tangents (crossings) it converges quadratically. Each step solves the dense system of
-/// the closed contacts; a backtracking search on ‖Φ‖ globalises it. `r` holds the start (for
-/// example the frictionless answer) on entry and the answer on return; `tolerance` is in mm.
+/// for two tangents (crossings) it converges quadratically. Each step solves the system of
+/// the closed contacts by a sparse LU (it is as sparse as W); a backtracking search on ‖Φ‖
+/// globalises it. `r` holds the start (for example the frictionless answer) on entry and the answer
+/// on return; `tolerance` is in mm.
 FrictionalSolve solve_frictional(const FrictionalProblem& problem, double tolerance, int max_steps,
                                  Eigen::VectorXd& r);
 
