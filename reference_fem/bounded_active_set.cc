@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "contact_compliance.h"
 #include "subset_solve.h"
 
 namespace fibrecheck {
@@ -21,7 +22,9 @@ class BoundedSet {
   }
 
   /// The free variables' equations W_FF·z_F = q_F − W_FB·r_B solved, the held ones kept: false
-  /// when they cannot be solved.
+  /// when they cannot be solved. W_FB·r_B skips the columns held at zero (most of them on a tow:
+  /// the candidates that do not push, and their tangents), which it is called for at every
+  /// variable that reaches a bound.
   bool free_solve(Eigen::VectorXd& z) const {
     const Eigen::Index n = q_.size();
     std::vector<Eigen::Index> index;
@@ -32,7 +35,7 @@ class BoundedSet {
     if (m == 0) return true;
     Eigen::VectorXd held = r_;
     for (Eigen::Index i : index) held[i] = 0.0;
-    const Eigen::VectorXd load = q_ - W_ * held;
+    const Eigen::VectorXd load = q_ - AssembledCompliance(W_).times(held);
     Eigen::VectorXd b(m), x;
     for (Eigen::Index k = 0; k < m; ++k) b[k] = load[index[k]];
     if (!solve_on_subset(W_, index, b, x)) return false;
