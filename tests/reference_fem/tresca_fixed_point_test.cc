@@ -27,14 +27,20 @@ FrictionalProblem self_loading_contact() {
   return p;
 }
 
-TEST(TrescaFixedPoint, ACrawlingFixedPointIsFinishedByNewtonOnCoulombsLaw) {
+/// The contact's fixed point from the frictionless answer (P = 1, F = 0) within `updates` updates.
+TrescaSolve solve_within(double tolerance, int updates, Eigen::VectorXd& r) {
   FrictionalProblem problem = self_loading_contact();
   TrescaOptions options;
   options.threshold = 1e-12;
-  options.tolerance = 1e-9;
-  options.max_updates = 30;
-  Eigen::VectorXd r = Eigen::Vector2d(1.0, 0.0);  // the frictionless answer
-  const TrescaSolve solved = tresca_fixed_point(problem, options, r);
+  options.tolerance = tolerance;
+  options.max_updates = updates;
+  r = Eigen::Vector2d(1.0, 0.0);
+  return tresca_fixed_point(problem, options, r);
+}
+
+TEST(TrescaFixedPoint, ACrawlingFixedPointIsFinishedByNewtonOnCoulombsLaw) {
+  Eigen::VectorXd r;
+  const TrescaSolve solved = solve_within(1e-9, 30, r);
   EXPECT_TRUE(solved.settled) << solved.trouble;
   EXPECT_TRUE(solved.finished_by_newton);
   EXPECT_EQ(solved.updates, 30);
@@ -45,13 +51,8 @@ TEST(TrescaFixedPoint, ACrawlingFixedPointIsFinishedByNewtonOnCoulombsLaw) {
 
 // With updates enough, the fixed point gets there by itself and Newton has nothing to do.
 TEST(TrescaFixedPoint, ItsOwnUpdatesSettleWhereTheyHaveTheTime) {
-  FrictionalProblem problem = self_loading_contact();
-  TrescaOptions options;
-  options.threshold = 1e-12;
-  options.tolerance = 1e-6;
-  options.max_updates = 2000;
-  Eigen::VectorXd r = Eigen::Vector2d(1.0, 0.0);
-  const TrescaSolve solved = tresca_fixed_point(problem, options, r);
+  Eigen::VectorXd r;
+  const TrescaSolve solved = solve_within(1e-6, 2000, r);
   EXPECT_TRUE(solved.settled) << solved.trouble;
   EXPECT_FALSE(solved.finished_by_newton);
   EXPECT_GT(solved.updates, 100);
