@@ -119,6 +119,22 @@ std::string unsettled_message(const FrictionalProblem& problem, const TrescaOpti
   return out.str();
 }
 
+/// Newton's method on Coulomb's law itself (solve_frictional without radii) from `r`: true when it
+/// settles to `settled` (mm), the answer in `r`; otherwise `r` and the radii stay as they were.
+/// `residual` is what it left (mm).
+bool finish_by_newton(FrictionalProblem& problem, const TrescaOptions& options, double settled,
+                      TrescaSolve& result, Eigen::VectorXd& r, double& residual) {
+  const Eigen::VectorXd radii = problem.bounds, start = r;
+  problem.bounds.resize(0);
+  const FrictionalSolve coulomb = solve_frictional(problem, settled, options.max_newton_steps, r);
+  problem.bounds = radii;
+  result.newton_steps += coulomb.newton_steps;
+  residual = coulomb.residual;
+  result.finished_by_newton = coulomb.settled;
+  if (!coulomb.settled) r = start;
+  return coulomb.settled;
+}
+
 }  // namespace
 
 TrescaSolve tresca_fixed_point(FrictionalProblem& problem, const TrescaOptions& options,
@@ -137,8 +153,9 @@ TrescaSolve tresca_fixed_point(FrictionalProblem& problem, const TrescaOptions& 
   tangential_compliances(problem, compliance, movable);
   FrictionalSolve inner;
   Relaxation relaxation;
-  double change = INFINITY, lowest = INFINITY;
+  double change = INFINITY, lowest = INFINITY, coulomb_residual = INFINITY;
   int updates = 0, lowest_at = 0;
+  bool newton_tried = false;
   for (updates = 1; updates <= options.max_updates; ++updates) {
     if (one_tangent) {
       Eigen::VectorXd lo, hi;
@@ -158,25 +175,15 @@ TrescaSolve tresca_fixed_point(FrictionalProblem& problem, const TrescaOptions& 
     relaxation.adapt(change);
     if (change <= settled) break;
     if (change < lowest) lowest = change, lowest_at = updates;
-    if (updates - lowest_at >= options.stall_updates) break;
-  }
-  result.updates = std::min(updates, options.max_updates);
-  double coulomb_residual = INFINITY;
-  if (inner.settled && change > settled) {
-    const Eigen::VectorXd radii = problem.bounds;
-    problem.bounds.resize(0);
-    const Eigen::VectorXd start = r;
-    const FrictionalSolve coulomb = solve_frictional(problem, settled, options.max_newton_steps, r);
-    result.newton_steps += coulomb.newton_steps;
-    problem.bounds = radii;
-    coulomb_residual = coulomb.residual;
-    if (coulomb.settled) {
-      change = coulomb.residual;
-      result.finished_by_newton = true;
-    } else {
-      r = start;
+    if (!newton_tried && updates - lowest_at >= options.stall_updates) {
+      newton_tried = true;
+      if (finish_by_newton(problem, options, settled, result, r, coulomb_residual)) break;
     }
   }
+  result.updates = std::min(updates, options.max_updates);
+  if (inner.settled && change > settled && !result.finished_by_newton)
+    finish_by_newton(problem, options, settled, result, r, coulomb_residual);
+  if (result.finished_by_newton) change = coulomb_residual;
   result.settled = inner.settled && !(change > settled);
   if (!result.settled)
     result.trouble = unsettled_message(problem, options, one_tangent, inner, result.updates, change,

@@ -38,13 +38,14 @@ struct TrescaSolve {
 /// the iterative solver's stopping criterion. Coulomb's law itself, solved by Newton's method,
 /// cycles between sticking and slipping sets on compacted tows; so does the plain map g ← μP,
 /// which is therefore relaxed (halved down to 1/64 while the violation grows, grown again while it
-/// falls). Where even so the violation reaches no new low in `stall_updates` updates (or the
-/// updates run out), Newton's method on Coulomb's law itself (solve_frictional without bounds)
-/// finishes from the fixed point's last answer: started that close it settles, where from the
-/// frictionless answer it cycles. The fixed point stalls where a contact's friction loads its own
-/// normal force about as much as the normal force moves the radius (μ·∂P/∂g near 1, the radius
-/// creeping a little further at every update), or where contacts that constrain nearly the same
-/// motion share a normal force in a way each Tresca problem settles differently. The iterative
+/// falls). Where even so the violation reaches no new low in `stall_updates` updates, Newton's
+/// method on Coulomb's law itself (solve_frictional without bounds) finishes from the fixed
+/// point's last answer: started that close it settles, where from the frictionless answer it
+/// cycles. Where it does not, the fixed point goes on from where it was, and Newton's method is
+/// tried once more if the updates run out. The fixed point stalls where a contact's friction loads
+/// its own normal force about as much as the normal force moves the radius (μ·∂P/∂g near 1, the
+/// radius creeping a little further at every update), or where contacts that constrain nearly the
+/// same motion share a normal force in a way each Tresca problem settles differently. The iterative
 /// solver has a Tresca fixed point of its own; this one is written apart from it on purpose, since
 /// the reference must not share a solution method with what it checks.
 ///
