@@ -43,28 +43,32 @@ class BoundedSet {
     return true;
   }
 
-  /// Solves on the free set, stepping back to the box: the first variable to reach a bound is
-  /// held there, and the free set solved again, until the answer lies in the box.
+  /// Solves on the free set, stepping back to the box: the variables that reach a bound first
+  /// (several at once where they reach it together: the slices of a line contact slipping as one)
+  /// are held there, and the free set solved again, until the answer lies in the box.
   bool settle() {
     const Eigen::Index n = q_.size();
-    Eigen::VectorXd z;
+    Eigen::VectorXd z, reach(n);
     for (Eigen::Index guard = 0; guard <= n; ++guard) {
       if (!free_solve(z)) return false;
-      double alpha = 1.0;
-      Eigen::Index blocking = -1;
+      double alpha = INFINITY;
       for (Eigen::Index i = 0; i < n; ++i) {
+        reach[i] = INFINITY;
         if (state_[i] != 0 || (z[i] >= lo_[i] && z[i] <= hi_[i])) continue;
         const double bound = z[i] < lo_[i] ? lo_[i] : hi_[i];
-        const double a = (bound - r_[i]) / (z[i] - r_[i]);
-        if (blocking < 0 || a < alpha) alpha = a, blocking = i;
+        reach[i] = std::clamp((bound - r_[i]) / (z[i] - r_[i]), 0.0, 1.0);
+        alpha = std::min(alpha, reach[i]);
       }
-      if (blocking < 0) {
+      if (alpha == INFINITY) {
         r_ = z;
         return true;
       }
-      r_ += std::clamp(alpha, 0.0, 1.0) * (z - r_);
-      state_[blocking] = z[blocking] < lo_[blocking] ? -1 : 1;
-      r_[blocking] = state_[blocking] < 0 ? lo_[blocking] : hi_[blocking];
+      r_ += alpha * (z - r_);
+      for (Eigen::Index i = 0; i < n; ++i) {
+        if (!(reach[i] <= alpha + 1e-12)) continue;
+        state_[i] = z[i] < lo_[i] ? -1 : 1;
+        r_[i] = state_[i] < 0 ? lo_[i] : hi_[i];
+      }
       r_ = r_.cwiseMax(lo_).cwiseMin(hi_);
     }
     return true;

@@ -15,16 +15,16 @@ struct BoundedSolve {
 /// The box-constrained QP min ½rᵀWr − qᵀr, lo ≤ r ≤ hi (W symmetric positive semi-definite), solved
 /// exactly by a bounded-variable active-set method in the manner of Lawson–Hanson (Stark–Parker's
 /// BVLS): variables are free or held at a bound; the free ones solve their equations W_FF·r_F =
-/// q_F − W_FB·r_B; when one would leave its box the step stops at the first bound hit and that
-/// variable is held there; then the variables whose bound the objective wants to leave (w = q − W·r
-/// beyond `tolerance` pointing inside) are freed, the most violating first, and the passes repeat.
-/// Each pass lowers the objective, so no set returns and the method ends. `lo[i] = hi[i]` fixes a
-/// variable. `r` holds a start on entry (clamped into the box; the variables strictly inside it
-/// start free) and the answer on return. This is the Tresca problem of friction with one tangent
-/// per contact: P ≥ 0 and |F| ≤ g, a box. nonnegative_active_set solves the frictionless problem,
-/// this one's box [0, ∞); the two stay apart because each one's order of passes, block additions
-/// and set-aside rule fix the answers it gives: there every frictionless answer to the last bit,
-/// here the friction answers, which need not be unique.
+/// q_F − W_FB·r_B; when one would leave its box the step stops at the first bound hit and the
+/// variables that reach their bounds there are held; then the variables whose bound the objective
+/// wants to leave (w = q − W·r beyond `tolerance` pointing inside) are freed, the most violating
+/// first, and the passes repeat. Each pass lowers the objective, so no set returns and the method
+/// ends. `lo[i] = hi[i]` fixes a variable. `r` holds a start on entry (clamped into the box; the
+/// variables strictly inside it start free) and the answer on return. This is the Tresca problem of
+/// friction with one tangent per contact: P ≥ 0 and |F| ≤ g, a box. nonnegative_active_set solves
+/// the frictionless problem, this one's box [0, ∞); the two stay apart because each one's order of
+/// passes, block additions and set-aside rule fix the answers it gives: there every frictionless
+/// answer to the last bit, here the friction answers, which need not be unique.
 BoundedSolve bounded_active_set(const Eigen::SparseMatrix<double>& W, const Eigen::VectorXd& q,
                                 const Eigen::VectorXd& lo, const Eigen::VectorXd& hi,
                                 double tolerance, int max_passes, Eigen::VectorXd& r);

@@ -74,8 +74,8 @@ double update_radii(FrictionalProblem& problem, const std::vector<double>& compl
     change =
         std::max(change, (slipping ? std::fabs(g - problem.bounds[k]) : std::max(0.0, size - g)) *
                              compliance[k]);
-    if (slipping && size > 0.0) r.segment(o + 1, t) *= g / size;
     problem.bounds[k] += relaxation * (g - problem.bounds[k]);
+    if (slipping && size > 0.0) r.segment(o + 1, t) *= problem.bounds[k] / size;
   }
   return change;
 }
