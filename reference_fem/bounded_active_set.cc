@@ -25,7 +25,8 @@ class BoundedSet {
   /// when they cannot be solved. W_FB·r_B skips the columns held at zero (most of them on a tow:
   /// the candidates that do not push, and their tangents), which it is called for at every
   /// variable that reaches a bound.
-  bool free_solve(Eigen::VectorXd& z) const {
+  bool free_solve(Eigen::VectorXd& z) {
+    ++free_solves_;
     const Eigen::Index n = q_.size();
     std::vector<Eigen::Index> index;
     for (Eigen::Index i = 0; i < n; ++i)
@@ -97,6 +98,7 @@ class BoundedSet {
   }
 
   void free(Eigen::Index i) { state_[i] = 0; }
+  int free_solves() const { return free_solves_; }
 
  private:
   const Eigen::SparseMatrix<double>& W_;
@@ -105,6 +107,7 @@ class BoundedSet {
   const Eigen::VectorXd& hi_;
   Eigen::VectorXd& r_;
   std::vector<signed char> state_;
+  int free_solves_ = 0;
 };
 
 }  // namespace
@@ -128,6 +131,7 @@ BoundedSolve bounded_active_set(const Eigen::SparseMatrix<double>& W, const Eige
         continue;
       }
       result.singular = true;
+      result.free_solves = set.free_solves();
       return result;
     }
     // A pass that gained nothing (round-off decides it): one variable at a time, and a single one
@@ -147,6 +151,7 @@ BoundedSolve bounded_active_set(const Eigen::SparseMatrix<double>& W, const Eige
         set.leaving(tolerance, set_aside, free_count);
     if (leaving.empty()) {
       result.solved = true;
+      result.free_solves = set.free_solves();
       return result;
     }
     const std::size_t add =
@@ -159,6 +164,7 @@ BoundedSolve bounded_active_set(const Eigen::SparseMatrix<double>& W, const Eige
       added.push_back(leaving[k].second);
     }
   }
+  result.free_solves = set.free_solves();
   return result;
 }
 

@@ -84,5 +84,22 @@ TEST(BoundedActiveSet, MatchesEnumerationOnRandomBoxes) {
   }
 }
 
+// The slices of a line contact slipping as one: ten friction variables coupled alike (W = I +
+// ½·11ᵀ, q = 10), all free at the start r = 0. The free solve puts each at 10/6, beyond its bound
+// 1, and all reach the bound at the same point of the step (3/5 of the way): the answer r = 1
+// (where w = q − W·r = 4 points outwards) comes from one factorisation and the check of the empty
+// free set, not one factorisation per variable.
+TEST(BoundedActiveSet, HoldsTheVariablesThatReachTheirBoundsTogether) {
+  const int n = 10;
+  const Eigen::MatrixXd W = Eigen::MatrixXd::Identity(n, n) + 0.5 * Eigen::MatrixXd::Ones(n, n);
+  const Eigen::VectorXd q = Eigen::VectorXd::Constant(n, 10.0);
+  const Eigen::VectorXd lo = Eigen::VectorXd::Constant(n, -1.0), hi = -lo;
+  Eigen::VectorXd r = Eigen::VectorXd::Zero(n);
+  const BoundedSolve solve = bounded_active_set(W.sparseView(), q, lo, hi, 1e-13, 1000, r);
+  ASSERT_TRUE(solve.solved);
+  EXPECT_EQ(r, hi);
+  EXPECT_LE(solve.free_solves, 2);
+}
+
 }  // namespace
 }  // namespace fibrecheck
