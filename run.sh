@@ -81,7 +81,7 @@ step "tolerance study: a generated 100-fibre tow against the reference on its sl
 step "stability study: two crossing fibres, the parallel fibres and the extreme catalogue"
 ./build/fibrecheck study stability scenes/two_fibres_crossing.json scenes/parallel_fibres.json \
   scenes/extreme/*.json --max-iterations 50000 --out "$out/study/stability" -q
-step "compaction study: the seed's compaction test case, generated tows of 19 and 100 fibres (mu = 0.2; the reference with friction on 19)"
+step "compaction study: the seed's compaction test case, generated tows of 19 and 100 fibres (mu = 0.2; the reference with friction on both)"
 ./build/fibrecheck generate tow --fibres 19 --seed 2 --volume-fraction 0.35 --steps 12 \
   --final-compaction 0.7 --friction 0.2 --out "$out/scenes/tow_19_compaction.json" >/dev/null
 ./build/fibrecheck generate tow --fibres 100 --slices 20 --seed 2 --volume-fraction 0.35 --steps 5 \
@@ -89,7 +89,7 @@ step "compaction study: the seed's compaction test case, generated tows of 19 an
   --out "$out/scenes/tow_100_compaction.json" >/dev/null
 ./build/fibrecheck study compaction scenes/compaction_test.json "$out/scenes/tow_19_compaction.json" \
   "$out/scenes/tow_100_compaction.json" --steps 6 --final-compaction 0.7 --sections 10 \
-  --frictional-reference-fibres 19 --out "$out/study/compaction"
+  --frictional-reference-fibres 100 --out "$out/study/compaction"
 # The 1 000-fibre studies take more than an hour: their points are stored in benchmarks/stored/ and
 # copied in; a folder without them runs them afresh.
 step "compaction study: a generated 1 000-fibre tow, 12 steps from its first wall contact to Vf 0.65 (stored points)"
