@@ -15,8 +15,9 @@ namespace {
 class BoundedSet {
  public:
   BoundedSet(const Eigen::SparseMatrix<double>& W, const Eigen::VectorXd& q,
-             const Eigen::VectorXd& lo, const Eigen::VectorXd& hi, Eigen::VectorXd& r)
-      : W_(W), q_(q), lo_(lo), hi_(hi), r_(r), state_(q.size(), 0) {
+             const Eigen::VectorXd& lo, const Eigen::VectorXd& hi, Eigen::VectorXd& r,
+             int& free_solves)
+      : W_(W), q_(q), lo_(lo), hi_(hi), r_(r), state_(q.size(), 0), free_solves_(free_solves) {
     for (Eigen::Index i = 0; i < q.size(); ++i)
       state_[i] = r[i] <= lo[i] ? -1 : (r[i] >= hi[i] ? 1 : 0);
   }
@@ -98,7 +99,6 @@ class BoundedSet {
   }
 
   void free(Eigen::Index i) { state_[i] = 0; }
-  int free_solves() const { return free_solves_; }
 
  private:
   const Eigen::SparseMatrix<double>& W_;
@@ -107,7 +107,7 @@ class BoundedSet {
   const Eigen::VectorXd& hi_;
   Eigen::VectorXd& r_;
   std::vector<signed char> state_;
-  int free_solves_ = 0;
+  int& free_solves_;
 };
 
 }  // namespace
@@ -119,7 +119,7 @@ BoundedSolve bounded_active_set(const Eigen::SparseMatrix<double>& W, const Eige
   const Eigen::Index n = q.size();
   if (r.size() != n) r = Eigen::VectorXd::Zero(n);
   r = r.cwiseMax(lo).cwiseMin(hi);
-  BoundedSet set(W, q, lo, hi, r);
+  BoundedSet set(W, q, lo, hi, r, result.free_solves);
   bool one_at_a_time = false;
   std::vector<char> set_aside(n, 0);
   std::vector<Eigen::Index> added;
@@ -131,7 +131,6 @@ BoundedSolve bounded_active_set(const Eigen::SparseMatrix<double>& W, const Eige
         continue;
       }
       result.singular = true;
-      result.free_solves = set.free_solves();
       return result;
     }
     // A pass that gained nothing (round-off decides it): one variable at a time, and a single one
@@ -151,7 +150,6 @@ BoundedSolve bounded_active_set(const Eigen::SparseMatrix<double>& W, const Eige
         set.leaving(tolerance, set_aside, free_count);
     if (leaving.empty()) {
       result.solved = true;
-      result.free_solves = set.free_solves();
       return result;
     }
     const std::size_t add =
@@ -164,7 +162,6 @@ BoundedSolve bounded_active_set(const Eigen::SparseMatrix<double>& W, const Eige
       added.push_back(leaving[k].second);
     }
   }
-  result.free_solves = set.free_solves();
   return result;
 }
 
