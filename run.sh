@@ -14,7 +14,7 @@ esac
 # Debian packages the project builds and runs with.
 packages=(build-essential cmake libeigen3-dev nlohmann-json3-dev libcli11-dev libgtest-dev
           libbenchmark-dev gnuplot-nox libdeal.ii-dev gmsh libgmsh-dev openmpi-bin
-          libsiconos-numerics-dev texlive-latex-base texlive-latex-recommended
+          libsiconos-numerics-dev libsuitesparse-dev texlive-latex-base texlive-latex-recommended
           texlive-latex-extra texlive-luatex lmodern poppler-utils)
 
 missing=()

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "contact_compliance.h"
+#include "free_set_factor.h"
 #include "subset_solve.h"
 
 namespace fibrecheck {
@@ -16,14 +17,23 @@ class BoundedSet {
  public:
   BoundedSet(const Eigen::SparseMatrix<double>& W, const Eigen::VectorXd& q,
              const Eigen::VectorXd& lo, const Eigen::VectorXd& hi, Eigen::VectorXd& r,
-             int& free_solves)
-      : W_(W), q_(q), lo_(lo), hi_(hi), r_(r), state_(q.size(), 0), free_solves_(free_solves) {
+             int& free_solves, FreeSetFactor& factor)
+      : W_(W),
+        q_(q),
+        lo_(lo),
+        hi_(hi),
+        r_(r),
+        state_(q.size(), 0),
+        free_solves_(free_solves),
+        factor_(factor) {
     for (Eigen::Index i = 0; i < q.size(); ++i)
       state_[i] = r[i] <= lo[i] ? -1 : (r[i] >= hi[i] ? 1 : 0);
   }
 
   /// The free variables' equations W_FF·z_F = q_F − W_FB·r_B solved, the held ones kept: false
-  /// when they cannot be solved. W_FB·r_B skips the columns held at zero (most of them on a tow:
+  /// when they cannot be solved. The kept factor answers them (free_set_factor.h: the free set
+  /// changes by the few variables a step held or a pass freed); where even a fresh one cannot,
+  /// solve_on_subset factorises them afresh. W_FB·r_B skips the columns held at zero (most of them on a tow:
   /// the candidates that do not push, and their tangents), which it is called for at every
   /// variable that reaches a bound.
   bool free_solve(Eigen::VectorXd& z) {
@@ -36,9 +46,15 @@ class BoundedSet {
     const Eigen::Index m = static_cast<Eigen::Index>(index.size());
     if (m == 0) return true;
     Eigen::VectorXd held = r_;
-    for (Eigen::Index i : index) held[i] = 0.0;
+    std::vector<char> free(static_cast<std::size_t>(n), 0);
+    for (Eigen::Index i : index) held[i] = 0.0, free[i] = 1;
     const Eigen::VectorXd load = q_ - AssembledCompliance(W_).times(held);
-    Eigen::VectorXd b(m), x;
+    Eigen::VectorXd x;
+    if (factor_.solve(free, load, x)) {
+      for (Eigen::Index i : index) z[i] = x[i];
+      return true;
+    }
+    Eigen::VectorXd b(m);
     for (Eigen::Index k = 0; k < m; ++k) b[k] = load[index[k]];
     if (!solve_on_subset(W_, index, b, x)) return false;
     for (Eigen::Index k = 0; k < m; ++k) z[index[k]] = x[k];
@@ -108,6 +124,7 @@ class BoundedSet {
   Eigen::VectorXd& r_;
   std::vector<signed char> state_;
   int& free_solves_;
+  FreeSetFactor& factor_;
 };
 
 }  // namespace
@@ -115,11 +132,19 @@ class BoundedSet {
 BoundedSolve bounded_active_set(const Eigen::SparseMatrix<double>& W, const Eigen::VectorXd& q,
                                 const Eigen::VectorXd& lo, const Eigen::VectorXd& hi,
                                 double tolerance, int max_passes, Eigen::VectorXd& r) {
+  FreeSetFactor factor(W);
+  return bounded_active_set(factor, q, lo, hi, tolerance, max_passes, r);
+}
+
+BoundedSolve bounded_active_set(FreeSetFactor& factor, const Eigen::VectorXd& q,
+                                const Eigen::VectorXd& lo, const Eigen::VectorXd& hi,
+                                double tolerance, int max_passes, Eigen::VectorXd& r) {
+  const Eigen::SparseMatrix<double>& W = factor.matrix();
   BoundedSolve result;
   const Eigen::Index n = q.size();
   if (r.size() != n) r = Eigen::VectorXd::Zero(n);
   r = r.cwiseMax(lo).cwiseMin(hi);
-  BoundedSet set(W, q, lo, hi, r, result.free_solves);
+  BoundedSet set(W, q, lo, hi, r, result.free_solves, factor);
   bool one_at_a_time = false;
   std::vector<char> set_aside(n, 0);
   std::vector<Eigen::Index> added;

@@ -4,6 +4,8 @@
 #include <Eigen/SparseCore>
 #include <vector>
 
+#include "free_set_factor.h"
+
 namespace fibrecheck {
 
 struct BoundedSolve {
@@ -27,6 +29,13 @@ struct BoundedSolve {
 /// passes, block additions and set-aside rule fix the answers it gives: there every frictionless
 /// answer to the last bit, here the friction answers, which need not be unique.
 BoundedSolve bounded_active_set(const Eigen::SparseMatrix<double>& W, const Eigen::VectorXd& q,
+                                const Eigen::VectorXd& lo, const Eigen::VectorXd& hi,
+                                double tolerance, int max_passes, Eigen::VectorXd& r);
+
+/// The same with the free set's factor kept from an earlier solve with the same W (the inner
+/// problems of a Tresca fixed point differ only in their bounds): a warm start then modifies the
+/// factor by the variables whose state changed instead of factorising afresh.
+BoundedSolve bounded_active_set(FreeSetFactor& factor, const Eigen::VectorXd& q,
                                 const Eigen::VectorXd& lo, const Eigen::VectorXd& hi,
                                 double tolerance, int max_passes, Eigen::VectorXd& r);
 

@@ -151,6 +151,7 @@ TrescaSolve tresca_fixed_point(FrictionalProblem& problem, const TrescaOptions& 
   std::vector<double> compliance;
   std::vector<char> movable;
   tangential_compliances(problem, compliance, movable);
+  FreeSetFactor factor(problem.W);
   FrictionalSolve inner;
   Relaxation relaxation;
   double change = INFINITY, lowest = INFINITY, coulomb_residual = INFINITY;
@@ -160,7 +161,7 @@ TrescaSolve tresca_fixed_point(FrictionalProblem& problem, const TrescaOptions& 
     if (one_tangent) {
       Eigen::VectorXd lo, hi;
       tresca_box(problem, movable, lo, hi);
-      const BoundedSolve box = bounded_active_set(problem.W, problem.q, lo, hi, options.threshold,
+      const BoundedSolve box = bounded_active_set(factor, problem.q, lo, hi, options.threshold,
                                                   options.max_active_set_passes, r);
       result.active_set_passes += box.passes;
       inner.settled = box.solved;
