@@ -33,9 +33,9 @@ class BoundedSet {
   /// The free variables' equations W_FF·z_F = q_F − W_FB·r_B solved, the held ones kept: false
   /// when they cannot be solved. The kept factor answers them (free_set_factor.h: the free set
   /// changes by the few variables a step held or a pass freed); where even a fresh one cannot,
-  /// solve_on_subset factorises them afresh. W_FB·r_B skips the columns held at zero (most of them on a tow:
-  /// the candidates that do not push, and their tangents), which it is called for at every
-  /// variable that reaches a bound.
+  /// solve_on_subset factorises them afresh. W_FB·r_B skips the columns held at zero (most of them
+  /// on a tow: the candidates that do not push, and their tangents), which it is called for at
+  /// every variable that reaches a bound.
   bool free_solve(Eigen::VectorXd& z) {
     ++free_solves_;
     const Eigen::Index n = q_.size();

@@ -12,7 +12,7 @@ struct BoundedSolve {
   bool solved = false;    ///< no bound left that the objective wants to leave
   bool singular = false;  ///< a free set whose system could not be solved even regularised
   int passes = 0;
-  int free_solves = 0;  ///< systems of the free variables solved (one factorisation each)
+  int free_solves = 0;  ///< systems of the free variables solved
 };
 
 /// The box-constrained QP min ½rᵀWr − qᵀr, lo ≤ r ≤ hi (W symmetric positive semi-definite), solved

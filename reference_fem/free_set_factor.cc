@@ -74,6 +74,7 @@ class FreeSetFactor::Factor {
   }
 
   bool modified() const { return modified_; }
+  double shift() const { return shift_; }
 
   /// Every pivot of F positive and none below 1e-14 of the largest (subset_solve.h).
   bool pivots_sound() const {
@@ -230,12 +231,11 @@ double FreeSetFactor::residual_ratio(const std::vector<char>& free, const Eigen:
 // is not.
 bool FreeSetFactor::solve_with(Factor& factor, const std::vector<char>& free,
                                const Eigen::VectorXd& b, Eigen::VectorXd& x) {
-  const double shift = &factor == exact_.get() ? 0.0 : epsilon_;
   for (int attempt = 0; attempt < 2; ++attempt) {
     if (attempt == 1 &&
         (!factor.modified() || !factor.bring_to(free, true, factorisations_, modifications_)))
       return false;
-    if (factor.solve(b, x) && residual_ratio(free, b, x, shift) <= kRoundOff) return true;
+    if (factor.solve(b, x) && residual_ratio(free, b, x, factor.shift()) <= kRoundOff) return true;
   }
   return false;
 }
