@@ -25,37 +25,36 @@ class BoundedSet {
         r_(r),
         state_(q.size(), 0),
         free_solves_(free_solves),
-        factor_(factor) {
+        factor_(factor),
+        free_(q.size(), 0) {
     for (Eigen::Index i = 0; i < q.size(); ++i)
       state_[i] = r[i] <= lo[i] ? -1 : (r[i] >= hi[i] ? 1 : 0);
   }
 
   /// The free variables' equations W_FF·z_F = q_F − W_FB·r_B solved, the held ones kept: false
   /// when they cannot be solved. The kept factor answers them (free_set_factor.h: the free set
-  /// changes by the few variables a step held or a pass freed); where even a fresh one cannot,
-  /// solve_on_subset factorises them afresh. W_FB·r_B skips the columns held at zero (most of them
-  /// on a tow: the candidates that do not push, and their tangents), which it is called for at
-  /// every variable that reaches a bound.
-  bool free_solve(Eigen::VectorXd& z) {
+  /// changes by the few variables a step held or a pass freed), its answer `judged` by its
+  /// residual or not; where even a fresh one cannot, solve_on_subset factorises them afresh.
+  bool free_solve(Eigen::VectorXd& z, bool judged) {
     ++free_solves_;
     const Eigen::Index n = q_.size();
     std::vector<Eigen::Index> index;
-    for (Eigen::Index i = 0; i < n; ++i)
-      if (state_[i] == 0) index.push_back(i);
+    for (Eigen::Index i = 0; i < n; ++i) {
+      free_[i] = state_[i] == 0 ? 1 : 0;
+      if (free_[i]) index.push_back(i);
+    }
     z = r_;
+    by_factor_ = false;
     const Eigen::Index m = static_cast<Eigen::Index>(index.size());
     if (m == 0) return true;
-    Eigen::VectorXd held = r_;
-    std::vector<char> free(static_cast<std::size_t>(n), 0);
-    for (Eigen::Index i : index) held[i] = 0.0, free[i] = 1;
-    const Eigen::VectorXd load = q_ - AssembledCompliance(W_).times(held);
     Eigen::VectorXd x;
-    if (factor_.solve(free, load, x)) {
+    if (factor_.solve(free_, load_, x, judged)) {
       for (Eigen::Index i : index) z[i] = x[i];
+      by_factor_ = true;
       return true;
     }
     Eigen::VectorXd b(m);
-    for (Eigen::Index k = 0; k < m; ++k) b[k] = load[index[k]];
+    for (Eigen::Index k = 0; k < m; ++k) b[k] = load_[index[k]];
     if (!solve_on_subset(W_, index, b, x)) return false;
     for (Eigen::Index k = 0; k < m; ++k) z[index[k]] = x[k];
     return true;
@@ -63,12 +62,21 @@ class BoundedSet {
 
   /// Solves on the free set, stepping back to the box: the variables that reach a bound first
   /// (several at once where they reach it together: the slices of a line contact slipping as one)
-  /// are held there, and the free set solved again, until the answer lies in the box.
+  /// are held there, and the free set solved again, until the answer lies in the box. The solves
+  /// on the way only choose where each step stops; the answer it ends on is judged by its residual
+  /// (and where it fails, the solves go on judged). The right-hand side q − W_FB·r_B is made once
+  /// and then follows the variables as they are held, a column each: it skips the columns held at
+  /// zero, most of them on a tow (the candidates that do not push, and their tangents).
   bool settle() {
     const Eigen::Index n = q_.size();
+    Eigen::VectorXd held = r_;
+    for (Eigen::Index i = 0; i < n; ++i)
+      if (state_[i] == 0) held[i] = 0.0;
+    load_ = q_ - AssembledCompliance(W_).times(held);
     Eigen::VectorXd z, reach(n);
+    bool judged = false;
     for (Eigen::Index guard = 0; guard <= n; ++guard) {
-      if (!free_solve(z)) return false;
+      if (!free_solve(z, judged)) return false;
       double alpha = INFINITY;
       for (Eigen::Index i = 0; i < n; ++i) {
         reach[i] = INFINITY;
@@ -78,6 +86,10 @@ class BoundedSet {
         alpha = std::min(alpha, reach[i]);
       }
       if (alpha == INFINITY) {
+        if (!judged && by_factor_ && !factor_.answers(free_, load_, z)) {
+          judged = true;
+          continue;
+        }
         r_ = z;
         return true;
       }
@@ -86,6 +98,7 @@ class BoundedSet {
         if (!(reach[i] <= alpha + 1e-12)) continue;
         state_[i] = z[i] < lo_[i] ? -1 : 1;
         r_[i] = state_[i] < 0 ? lo_[i] : hi_[i];
+        hold(i);
       }
       r_ = r_.cwiseMax(lo_).cwiseMin(hi_);
     }
@@ -125,6 +138,16 @@ class BoundedSet {
   std::vector<signed char> state_;
   int& free_solves_;
   FreeSetFactor& factor_;
+  Eigen::VectorXd load_;    ///< q − W_FB·r_B of the present free set
+  std::vector<char> free_;  ///< the free set of the last solve
+  bool by_factor_ = false;  ///< the last solve's answer came from the kept factor
+
+  /// Variable i held at its bound: its column joins W_FB·r_B.
+  void hold(Eigen::Index i) {
+    if (r_[i] == 0.0) return;
+    for (Eigen::SparseMatrix<double>::InnerIterator it(W_, i); it; ++it)
+      load_[it.row()] -= it.value() * r_[i];
+  }
 };
 
 }  // namespace

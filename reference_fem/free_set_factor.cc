@@ -227,29 +227,36 @@ double FreeSetFactor::residual_ratio(const std::vector<char>& free, const Eigen:
   return size > 0.0 ? largest / size : 0.0;
 }
 
-// The factor's answer where its residual is at round-off; one made afresh where a modified one's
-// is not.
+// The factor's answer where its residual is at round-off (or unjudged); one made afresh where a
+// modified one's is not.
 bool FreeSetFactor::solve_with(Factor& factor, const std::vector<char>& free,
-                               const Eigen::VectorXd& b, Eigen::VectorXd& x) {
+                               const Eigen::VectorXd& b, Eigen::VectorXd& x, bool judged) {
+  last_shift_ = factor.shift();
   for (int attempt = 0; attempt < 2; ++attempt) {
     if (attempt == 1 &&
         (!factor.modified() || !factor.bring_to(free, true, factorisations_, modifications_)))
       return false;
-    if (factor.solve(b, x) && residual_ratio(free, b, x, factor.shift()) <= kRoundOff) return true;
+    if (factor.solve(b, x) && (!judged || residual_ratio(free, b, x, factor.shift()) <= kRoundOff))
+      return true;
   }
   return false;
 }
 
 bool FreeSetFactor::solve(const std::vector<char>& free, const Eigen::VectorXd& b,
-                          Eigen::VectorXd& x) {
+                          Eigen::VectorXd& x, bool judged) {
   Eigen::VectorXd masked = b;
   for (std::size_t j = 0; j < free.size(); ++j)
     if (!free[j]) masked[static_cast<Eigen::Index>(j)] = 0.0;
   if (exact_->bring_to(free, false, factorisations_, modifications_) && exact_->pivots_sound())
-    return solve_with(*exact_, free, masked, x);
+    return solve_with(*exact_, free, masked, x, judged);
   if (!regularised_) regularised_ = std::make_unique<Factor>(W_, epsilon_);
   return regularised_->bring_to(free, false, factorisations_, modifications_) &&
-         solve_with(*regularised_, free, masked, x);
+         solve_with(*regularised_, free, masked, x, judged);
+}
+
+bool FreeSetFactor::answers(const std::vector<char>& free, const Eigen::VectorXd& b,
+                            const Eigen::VectorXd& x) const {
+  return residual_ratio(free, b, x, last_shift_) <= kRoundOff;
 }
 
 }  // namespace fibrecheck

@@ -27,8 +27,14 @@ class FreeSetFactor {
 
   /// x with x_F solving W_FF·x_F = b_F (or its regularised equations) and zero outside F
   /// (`free[i]` non-zero for i in F). False when even a fresh factor leaves a residual above
-  /// round-off: the caller then solves them another way.
-  bool solve(const std::vector<char>& free, const Eigen::VectorXd& b, Eigen::VectorXd& x);
+  /// round-off: the caller then solves them another way. Not `judged`, the answer is the factor's
+  /// as it stands, only checked to be finite: for solves whose answers only steer, the last of
+  /// which the caller judges by `answers`.
+  bool solve(const std::vector<char>& free, const Eigen::VectorXd& b, Eigen::VectorXd& x,
+             bool judged = true);
+  /// The last answer's residual (x for F and b, by the factor that gave it) is at round-off.
+  bool answers(const std::vector<char>& free, const Eigen::VectorXd& b,
+               const Eigen::VectorXd& x) const;
 
   const Eigen::SparseMatrix<double>& matrix() const { return W_; }
   int factorisations() const { return factorisations_; }
@@ -37,12 +43,13 @@ class FreeSetFactor {
  private:
   class Factor;
   bool solve_with(Factor& factor, const std::vector<char>& free, const Eigen::VectorXd& b,
-                  Eigen::VectorXd& x);
+                  Eigen::VectorXd& x, bool judged);
   double residual_ratio(const std::vector<char>& free, const Eigen::VectorXd& b,
                         const Eigen::VectorXd& x, double shift) const;
 
   const Eigen::SparseMatrix<double>& W_;
   double epsilon_ = 0.0;
+  double last_shift_ = 0.0;  ///< of the factor that gave the last answer
   std::unique_ptr<Factor> exact_, regularised_;
   int factorisations_ = 0;
   int modifications_ = 0;

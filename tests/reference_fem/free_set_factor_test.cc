@@ -67,6 +67,27 @@ TEST(FreeSetFactor, ModifiedFactorSolvesEveryFreeSetOfAWalk) {
   EXPECT_GE(factor.modifications(), 200);
 }
 
+// An unjudged answer is the factor's as it stands; `answers` judges it afterwards: the answer of a
+// walk's set meets its equations, and the same answer moved by a part in a million does not.
+TEST(FreeSetFactor, JudgesAnUnjudgedAnswerByItsResidual) {
+  std::mt19937 random(5);
+  std::normal_distribution<double> gauss;
+  const int n = 40;
+  const Eigen::SparseMatrix<double> W = banded_compliance(n, random);
+  FreeSetFactor factor(W);
+  std::vector<char> free(n, 0);
+  for (int i = 0; i < n; i += 3) free[i] = 1;
+  Eigen::VectorXd b(n), x;
+  for (int i = 0; i < n; ++i) b[i] = gauss(random);
+  ASSERT_TRUE(factor.solve(free, b, x));
+  free[1] = 1;
+  ASSERT_TRUE(factor.solve(free, b, x, false));
+  EXPECT_TRUE(factor.answers(free, b, x));
+  EXPECT_LT((x - dense_answer(Eigen::MatrixXd(W), free, b)).norm(), 1e-10 * (1.0 + x.norm()));
+  x[1] *= 1.0 + 1e-6;
+  EXPECT_FALSE(factor.answers(free, b, x));
+}
+
 // Two free variables that constrain the same motion (equal rows of W): W_FF is singular, and the
 // regularised answer closes the consistent equations all the same, the two sharing alike; with one
 // of them held the other two are solved exactly.
