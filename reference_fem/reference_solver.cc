@@ -11,6 +11,7 @@
 #include <limits>
 #include <map>
 #include <set>
+#include <unordered_map>
 
 #include "ambiguous_sides.h"
 #include "carry_over.h"
@@ -75,6 +76,7 @@ Result ReferenceSolver::run() {
   const auto start = std::chrono::steady_clock::now();
   deform_under_scene_loads();
   detect();
+  take_last_step_forces();
   const std::vector<std::string> ambiguous =
       ambiguous_side_warnings(contacts_, fibres_, scene_.walls);
   OuterEnd end = OuterEnd::candidates_changing;
@@ -133,6 +135,23 @@ void ReferenceSolver::detect() {
   moved_crossings_.clear();
   contacts_ = std::move(found);
   if (mu_ > 0.0) origins_.set(contacts_);
+}
+
+// A load step of a path starts where the last one ended: a candidate the last step had takes its
+// force and friction, and the first active set starts from the contacts that pushed there. The
+// step's own candidates and slip origins stay as detected.
+void ReferenceSolver::take_last_step_forces() {
+  if (last_step_.empty()) return;
+  std::unordered_map<std::uint64_t, const Contact*> last;
+  for (const Contact& c : last_step_) last[c.key()] = &c;
+  pushing_.assign(contacts_.size(), 0);
+  for (std::size_t k = 0; k < contacts_.size(); ++k) {
+    auto it = last.find(contacts_[k].key());
+    if (it == last.end()) continue;
+    contacts_[k].force = it->second->force;
+    contacts_[k].friction = it->second->friction;
+    pushing_[k] = contacts_[k].force > 0.0 ? 1 : 0;
+  }
 }
 
 // make_grid: this process's fibres, with nodes at every contact station and sample position,
@@ -268,6 +287,7 @@ void ReferenceSolver::solve_friction(const std::vector<char>& excluded, Start st
   TrescaOptions options;
   options.threshold = threshold_;
   options.tolerance = tolerance_;
+  options.slack = friction_slack_;
   options.max_active_set_passes = options_.max_active_set_iterations;
   const TrescaSolve solved = tresca_fixed_point(problem, options, r);
   active_set_iterations_ += solved.active_set_passes;
@@ -527,32 +547,41 @@ MeshOptions ReferenceSolver::first_mesh_options() {
 
 namespace {
 
-/// One load step by its own ReferenceSolver, its slip measured from `from`; `to` receives where the
-/// next step's slip is measured from.
-Result solve_step(const Scene& step, const ReferenceOptions& options, const SlipOrigins& from,
-                  SlipOrigins& to) {
+/// Where a load step starts: the slip origins of the step before and its final contacts.
+struct StepStart {
+  SlipOrigins origins;
+  std::vector<Contact> contacts;
+};
+
+/// One load step by its own ReferenceSolver, its slip measured from `from` and its active sets
+/// started from `from`'s forces; `to` receives where the next step starts.
+Result solve_step(const Scene& step, const ReferenceOptions& options, const StepStart& from,
+                  StepStart& to) {
   ReferenceSolver solver(step, options);
-  solver.start_from(from);
+  solver.start_from(from.origins);
+  solver.guess_from(from.contacts);
   Result result = solver.run();
-  to = solver.end_state();
+  to.origins = solver.end_state();
+  to.contacts = solver.final_contacts();
   return result;
 }
 
 }  // namespace
 
 // A load path step by step. Without friction each step's answer is that of its own geometry and
-// loads, so each is solved afresh, exactly; with friction each step starts where the last one
-// ended (its slip is measured from there). The continuous line contact, when it is to be refined
-// until its line force settles, solves every refinement of a step from the same start.
+// loads, solved exactly; with friction each step's slip is measured from where the last one ended.
+// Either way each step's active sets start from the forces the last step ended with. The
+// continuous line contact, when it is to be refined until its line force settles, solves every
+// refinement of a step from the same start.
 Result solve_reference(const Scene& scene, const ReferenceOptions& options) {
   share_cores_with_blas(options.communicator);
-  SlipOrigins origins;
+  StepStart last;
   Result r = solve_load_path(scene, [&](const Scene& step, const Result*) {
     if (!options.refine_until_converged || options.line_contact != LineContact::continuous)
-      return solve_step(step, options, origins, origins);
-    const SlipOrigins start = origins;
+      return solve_step(step, options, last, last);
+    const StepStart start = last;
     return solve_refined_until_settled(step, options, [&](const ReferenceOptions& once) {
-      return solve_step(step, once, start, origins);
+      return solve_step(step, once, start, last);
     });
   });
   replace_non_finite(r);

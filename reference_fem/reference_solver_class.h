@@ -48,6 +48,11 @@ class ReferenceSolver {
   void start_from(SlipOrigins origins) { origins_ = std::move(origins); }
   /// After `run`: where the next step's slip is measured from.
   const SlipOrigins& end_state() const { return end_state_; }
+  /// The previous step's contacts: their forces (and friction), matched by contact key, are this
+  /// step's first guess. Only the start of its active sets changes, not the answer they find.
+  void guess_from(std::vector<Contact> last_step) { last_step_ = std::move(last_step); }
+  /// After `run`: the contacts with their final forces, for the next step's guess.
+  const std::vector<Contact>& final_contacts() const { return contacts_; }
 
  private:
   /// One side of a contact on a fibre: the contact, its station on that fibre, and the sign α of a
@@ -69,6 +74,7 @@ class ReferenceSolver {
   // reference_output.cc, reference_result.cc).
   void deform_under_scene_loads();
   void detect();
+  void take_last_step_forces();
   void make_grid();
   void setup_system();
   void assemble_system();
@@ -132,6 +138,8 @@ class ReferenceSolver {
   // Deformed contact (deformed_contact.cc).
   double deformed_residual(const std::vector<Eigen::Vector3d>& u_a,
                            const std::vector<Eigen::Vector3d>& u_b) const;
+  double largest_relative_displacement(const std::vector<Eigen::Vector3d>& u_a,
+                                       const std::vector<Eigen::Vector3d>& u_b) const;
   void assemble_about_normals();
 
   // The final state (reference_output.cc).
@@ -184,9 +192,12 @@ class ReferenceSolver {
   double mu_;
   double within_reach_;  ///< bytes each process may take (memory_reach.h)
   SlipOrigins origins_, end_state_;
+  std::vector<Contact> last_step_;  ///< the previous load step's final contacts, if any
   /// The frictional problem of the candidates (μ > 0): W with the tangential blocks and q.
   FrictionalProblem friction_problem_;
   ContactProblem exported_;  ///< the problem last solved (only with options_.contact_problem)
+  /// mm: how far short of its fixed point the next Tresca problem may stop (deformed contact).
+  double friction_slack_ = 0.0;
   long newton_steps_ = 0;
   long tresca_updates_ = 0;
   long newton_finishes_ = 0;

@@ -14,14 +14,15 @@ namespace {
 
 /// Where the fixed point has settled (mm of slip): the round-off of the normal forces (the
 /// threshold, far below the slips the loads cause), 1e-9 of the largest slip under the loads, or
-/// 1e-3 of the scene's tolerance (the fixed point converges linearly, slowly where it is relaxed).
+/// 1e-3 of the scene's tolerance (the fixed point converges linearly, slowly where it is relaxed),
+/// or the slack its caller allows.
 double settled_slip(const FrictionalProblem& problem, const TrescaOptions& options) {
   const Eigen::Index n = static_cast<Eigen::Index>(problem.offset.size()) - 1;
   double slip_scale = 0.0;
   for (Eigen::Index k = 0; k < n; ++k)
     for (Eigen::Index i = problem.offset[k] + 1; i < problem.offset[k + 1]; ++i)
       slip_scale = std::max(slip_scale, std::fabs(problem.q[i]));
-  return std::max({options.threshold, 1e-9 * slip_scale, 1e-3 * options.tolerance});
+  return std::max({options.threshold, 1e-9 * slip_scale, 1e-3 * options.tolerance, options.slack});
 }
 
 /// Each contact's tangential compliance (mm/N, the slip per unit of friction: the largest

@@ -10,6 +10,9 @@ namespace fibrecheck {
 struct TrescaOptions {
   double threshold = 0.0;  ///< mm: the overlaps and slips the inner problems resolve
   double tolerance = 0.0;  ///< mm: the scene's overlap tolerance t_d
+  /// mm: the radii need settle no further than this, where the problem is itself one step of a
+  /// sequence that will change it by about as much (0: settle to the fixed point's own stop).
+  double slack = 0.0;
   int max_active_set_passes = 100000;
   int max_newton_steps = 100;
   int max_updates = 500;
@@ -35,19 +38,19 @@ struct TrescaSolve {
 /// normal forces they assumed: the largest violation of Coulomb's law, times the contact's
 /// tangential compliance (the slip it stands for, mm), below the larger of `threshold`, 1e-9 of the
 /// largest slip under the loads and 1e-3 of the scene's tolerance — a thousand times tighter than
-/// the iterative solver's stopping criterion. Coulomb's law itself, solved by Newton's method,
-/// cycles between sticking and slipping sets on compacted tows; so does the plain map g ← μP,
-/// which is therefore relaxed (halved down to 1/64 while the violation grows, grown again while it
-/// falls). Where even so the violation reaches no new low in `stall_updates` updates, Newton's
-/// method on Coulomb's law itself (solve_frictional without bounds) finishes from the fixed
-/// point's last answer: started that close it settles, where from the frictionless answer it
-/// cycles. Where it does not, the fixed point goes on from where it was, and Newton's method is
-/// tried once more if the updates run out. The fixed point stalls where a contact's friction loads
-/// its own normal force about as much as the normal force moves the radius (μ·∂P/∂g near 1, the
-/// radius creeping a little further at every update), or where contacts that constrain nearly the
-/// same motion share a normal force in a way each Tresca problem settles differently. The iterative
-/// solver has a Tresca fixed point of its own; this one is written apart from it on purpose, since
-/// the reference must not share a solution method with what it checks.
+/// the iterative solver's stopping criterion — or `slack` where that is larger. Coulomb's law
+/// itself, solved by Newton's method, cycles between sticking and slipping sets on compacted tows;
+/// so does the plain map g ← μP, which is therefore relaxed (halved down to 1/64 while the
+/// violation grows, grown again while it falls). Where even so the violation reaches no new low in
+/// `stall_updates` updates, Newton's method on Coulomb's law itself (solve_frictional without
+/// bounds) finishes from the fixed point's last answer: started that close it settles, where from
+/// the frictionless answer it cycles. Where it does not, the fixed point goes on from where it was,
+/// and Newton's method is tried once more if the updates run out. The fixed point stalls where a
+/// contact's friction loads its own normal force about as much as the normal force moves the radius
+/// (μ·∂P/∂g near 1, the radius creeping a little further at every update), or where contacts that
+/// constrain nearly the same motion share a normal force in a way each Tresca problem settles
+/// differently. The iterative solver has a Tresca fixed point of its own; this one is written apart
+/// from it on purpose, since the reference must not share a solution method with what it checks.
 ///
 /// `r` holds the start (the frictionless answer and the friction carried over) on entry and the
 /// answer on return; `problem.excluded` marks the contacts nothing can move, and `problem.bounds`
