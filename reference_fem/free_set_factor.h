@@ -11,10 +11,10 @@ namespace fibrecheck {
 /// changes a few variables at a time. The factor kept is the LDLᵀ of W with every variable outside
 /// F an identity row and column, so a variable joining F is a row added to the factor and one
 /// leaving it a row deleted (CHOLMOD's rank-2 modifications, about the cost of a solve), where a
-/// sparse LDLᵀ of W_FF from scratch costs an ordering and a factorisation each time. The ordering
-/// is that of the whole of W, made once; where F has changed by many variables since the factor
-/// was made it is made again. Every answer is judged by its own residual in W_FF, which must be at
-/// round-off (modifications accumulate error: the factor is then made afresh). As in
+/// sparse LDLᵀ of W_FF from scratch costs an ordering and a factorisation each time. A fresh
+/// factor is ordered on its own pattern; where F has changed by many variables since, it is made
+/// again. An answer judged is judged by its own residual in W_FF, which must be at round-off
+/// (modifications accumulate error: the factor is then made afresh). As in
 /// solve_on_subset, a W_FF with a pivot below 1e-14 of the largest (contacts that constrain the
 /// same motion twice) is solved regularised, W_FF + εI with ε 1e-10 of W's largest diagonal entry,
 /// by a second factor kept the same way.
