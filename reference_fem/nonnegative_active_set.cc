@@ -51,6 +51,15 @@ bool step_back(const ContactCompliance& W, const Eigen::VectorXd& d0, std::vecto
                Eigen::VectorXd& P, Eigen::VectorXd& z) {
   const Eigen::Index n = d0.size();
   for (int inner = 0; inner < n + 1; ++inner) {
+    // A contact just added that the set's answer would make pull leaves before any step: it would
+    // block the step at its start and take every other contact just added with it.
+    bool left = false;
+    for (Eigen::Index k = 0; k < n; ++k)
+      if (pushing[k] && z[k] <= 0.0 && P[k] <= 0.0) pushing[k] = 0, left = true;
+    if (left) {
+      if (!solve_on_set(W, d0, pushing, z)) return false;
+      continue;
+    }
     double alpha = 1.0;
     Eigen::Index blocking = -1;
     for (Eigen::Index k = 0; k < n; ++k)

@@ -149,5 +149,36 @@ TEST(NonnegativeActiveSet, NoContactsIsSolved) {
   EXPECT_EQ(P.size(), 0);
 }
 
+
+// Pairs of contacts coupled as two slices of one line contact: each pair's first contact pushes,
+// and its second, which overlaps as well under the loads alone, would pull once the first pushes.
+// The block that adds them together must keep the first: the set then roughly doubles a pass, and
+// the method ends in about log2 of the pushing set's size of passes. Dropping a whole block for
+// one contact that would pull falls back to one contact a pass (two passes a contact).
+TEST(NonnegativeActiveSet, BlockKeepsItsPushingContactsWhenOneWouldPull) {
+  const int pairs = 200, n = 2 * pairs;
+  const double coupling = 0.9;
+  std::vector<Eigen::Triplet<double>> entries;
+  Eigen::VectorXd d0(n), exact = Eigen::VectorXd::Zero(n);
+  for (int i = 0; i < pairs; ++i) {
+    const double scale = std::pow(0.95, i);  // interleaves the pairs in the order of overlaps
+    d0[2 * i] = scale;
+    d0[2 * i + 1] = 0.85 * scale;  // below coupling × the first's: it would pull
+    exact[2 * i] = scale;
+    entries.emplace_back(2 * i, 2 * i, 1.0);
+    entries.emplace_back(2 * i + 1, 2 * i + 1, 1.0);
+    entries.emplace_back(2 * i, 2 * i + 1, coupling);
+    entries.emplace_back(2 * i + 1, 2 * i, coupling);
+  }
+  Eigen::SparseMatrix<double> W(n, n);
+  W.setFromTriplets(entries.begin(), entries.end());
+  std::vector<char> excluded(n, 0), pushing(n, 0);
+  Eigen::VectorXd P;
+  const ActiveSetSolve solve = nonnegative_active_set(W, d0, 1e-13, excluded, 10 * n, P, pushing);
+  ASSERT_TRUE(solve.solved);
+  EXPECT_LT((P - exact).lpNorm<Eigen::Infinity>(), 1e-12);
+  EXPECT_LE(solve.passes, 20) << "log2(" << pairs << ") ≈ 8 doublings";
+}
+
 }  // namespace
 }  // namespace fibrecheck
