@@ -23,6 +23,7 @@
 #include "fibre.h"
 #include "fibre_mesh.h"
 #include "frictional_contact.h"
+#include "normal_mixing.h"
 #include "reference_result.h"
 #include "reference_solver.h"
 #include "result.h"
@@ -83,6 +84,7 @@ class ReferenceSolver {
   enum class Start { frictionless, last_answer };
   void solve(Start start = Start::frictionless);
   void follow_the_deformed_fibres();
+  void mix_normals(NormalMixing& mixing, std::vector<Contact>& followed) const;
   bool update_active_set();
   void report_progress(int outer) const;
   void report_geometric_update(double residual, double turned) const;

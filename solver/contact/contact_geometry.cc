@@ -115,7 +115,11 @@ void ContactGeometry::follow(Contact& c, const Eigen::Vector3d& u_a,
   const Eigen::Vector3d difference = centre_difference(c, u_a, u_b);
   const double distance = difference.norm();
   if (distance < 0.5 * (fibres_[c.a].radius + fibres_[c.b].radius)) return;
-  c.normal = difference / distance;
+  turn(c, difference / distance);
+}
+
+void ContactGeometry::turn(Contact& c, const Eigen::Vector3d& normal) const {
+  c.normal = normal;
   set_tangents(c);
   const double size = c.friction.norm();
   const Eigen::Vector3d turned = c.tangential(c.friction);

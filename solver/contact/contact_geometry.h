@@ -81,6 +81,10 @@ class ContactGeometry {
   /// the edge of its disk would fall inside it and count as sticking with all its slip.
   void follow(Contact& contact, const Eigen::Vector3d& u_a, const Eigen::Vector3d& u_b) const;
 
+  /// The contact's normal made `normal` (a unit vector), its tangents and friction turned with it
+  /// as `follow` turns them.
+  void turn(Contact& contact, const Eigen::Vector3d& normal) const;
+
   const std::vector<Fibre>& fibres() const { return fibres_; }
   const std::vector<WallSpec>& walls() const { return walls_; }
   const Eigen::Vector3d& tow_axis() const { return axis_; }
