@@ -50,11 +50,11 @@ double ReferenceSolver::largest_relative_displacement(
 
 // The overlaps d0 and the compliance W of the current candidates again, on the same mesh, about the
 // normals they have now: the stored influence matrices and loads' displacements, nothing solved
-// again.
+// again, and W filled in place (its pattern is that of the same candidates).
 void ReferenceSolver::assemble_about_normals() {
   dealii::TimerOutput::Scope scope(timer_, "assemble_system");
-  const std::vector<std::vector<ContactSide>> sides = assemble_compliance(G_);
-  if (mu_ > 0.0) assemble_frictional_problem(G_, sides);
+  const std::vector<std::vector<ContactSide>> sides = assemble_compliance(G_, true);
+  if (mu_ > 0.0) assemble_frictional_problem(G_, sides, true);
 }
 
 // After an exact solve on given normals: the finite-element fibres under its forces, the normals
@@ -91,12 +91,14 @@ void ReferenceSolver::follow_the_deformed_fibres() {
       turned = std::max(turned, (followed[k].normal - contacts_[k].normal).norm());
     }
     // Normals that did not turn give the same solve again: what is left is that solve's own.
-    if (turned <= kUnturned) return;
     // Settled, or within t_d and no longer falling: the round-off of the finite elements.
     const bool gaps_closed =
         residual <= settled || (residual < tolerance_ && residual > 0.5 * before);
     const bool turn_stalled = turned < 1e2 * kSettledTurn && turned > 0.5 * turned_before;
-    if (gaps_closed && (turned <= kSettledTurn || turn_stalled)) return;
+    if (turned <= kUnturned || (gaps_closed && (turned <= kSettledTurn || turn_stalled))) {
+      settle_the_friction();
+      return;
+    }
     report_geometric_update(residual, turned);
     // Mixing that made the normals turn more than the update before starts again from here.
     if (turned > turned_before) mixing.restart();
@@ -136,6 +138,15 @@ void ReferenceSolver::mix_normals(NormalMixing& mixing, std::vector<Contact>& fo
   for (Eigen::Index k = 0; k < n; ++k)
     if (followed[k].kind != ContactKind::wall && next.segment<3>(3 * k) != g.segment<3>(3 * k))
       detector_.geometry().turn(followed[k], next.segment<3>(3 * k));
+}
+
+// The answer's friction settled to the Tresca fixed point's own stop, where the last solve of the
+// geometric updates settled it only to the slack of a turn (a turn stalled at the round-off of the
+// finite elements, 1e-6 rad, still leaves radii that far from μP: contacts that slip would count
+// as sticking).
+void ReferenceSolver::settle_the_friction() {
+  if (!(mu_ > 0.0) || geometric_updates_ == 0) return;
+  solve(Start::last_answer);
 }
 
 // A line per geometric update, for options_.progress: a step on compacted tows can take many.

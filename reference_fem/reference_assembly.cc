@@ -11,13 +11,48 @@
 
 namespace fibrecheck {
 
+namespace {
+
+/// Entries summed into a sparse matrix: from triplets, which make its pattern, or, where the matrix
+/// already has the pattern of these entries (the same candidates about new normals), into it in
+/// place: a geometric update then neither holds the triplets nor sorts them again.
+class SparseSum {
+ public:
+  SparseSum(Eigen::SparseMatrix<double>& W, Eigen::Index size, bool in_place, std::size_t count)
+      : W_(W), size_(size), in_place_(in_place && W.rows() == size && W.isCompressed()) {
+    if (in_place_)
+      W_.coeffs().setZero();
+    else
+      entries_.reserve(count);
+  }
+  void add(Eigen::Index row, Eigen::Index column, double value) {
+    if (in_place_)
+      W_.coeffRef(row, column) += value;  // found in the pattern: nothing inserted
+    else
+      entries_.emplace_back(row, column, value);
+  }
+  void finish() {
+    if (in_place_) return;
+    W_.resize(size_, size_);
+    W_.setFromTriplets(entries_.begin(), entries_.end());  // sums duplicates
+  }
+
+ private:
+  Eigen::SparseMatrix<double>& W_;
+  Eigen::Index size_;
+  bool in_place_;
+  std::vector<Eigen::Triplet<double>> entries_;
+};
+
+}  // namespace
+
 // assemble_system: the overlaps d0 under the scene's loads and the compliance matrix W (and with
 // friction its tangential blocks), from finite-element solutions.
 void ReferenceSolver::assemble_system() {
   dealii::TimerOutput::Scope scope(timer_, "assemble_system");
   std::vector<double> G = loads_and_influence();
-  const std::vector<std::vector<ContactSide>> sides = assemble_compliance(G);
-  if (mu_ > 0.0) assemble_frictional_problem(G, sides);
+  const std::vector<std::vector<ContactSide>> sides = assemble_compliance(G, false);
+  if (mu_ > 0.0) assemble_frictional_problem(G, sides, false);
   // The deformed contact assembles again about new normals on the same mesh.
   if (detector_.geometry().deformed()) G_ = std::move(G);
 }
@@ -70,9 +105,9 @@ std::vector<double> ReferenceSolver::loads_and_influence() {
 // The overlaps d0_ under the scene's loads and W_jk = Σ_f α_j α_k G_f(j, k) n_j⊥·n_k⊥ over the
 // fibres both contacts act on, ⊥ the part across the fibre (mm/N); shared, the sum over this
 // process's fibres. Returns each fibre's contact sides, from which the frictional blocks are
-// assembled alike.
+// assembled alike. `in_place`: W has the pattern of these candidates already (new normals only).
 std::vector<std::vector<ReferenceSolver::ContactSide>> ReferenceSolver::assemble_compliance(
-    const std::vector<double>& G) {
+    const std::vector<double>& G, bool in_place) {
   const Eigen::Index n = static_cast<Eigen::Index>(contacts_.size());
   d0_.resize(n);
   std::vector<std::vector<ContactSide>> sides(fibres_.size());
@@ -91,11 +126,10 @@ std::vector<std::vector<ReferenceSolver::ContactSide>> ReferenceSolver::assemble
   }
   // Shared, each process assembles the part of its own fibres.
   const auto held = [&](std::size_t f) { return owned_[f] || !compliance_shared(); };
-  std::vector<Eigen::Triplet<double>> entries;
   std::size_t count = 0;
   for (std::size_t f = 0; f < fibres_.size(); ++f)
     if (held(f)) count += sides[f].size() * sides[f].size();
-  entries.reserve(count);
+  SparseSum W(W_, n, in_place, count);
   for (std::size_t f = 0; f < fibres_.size(); ++f) {
     if (!held(f)) continue;
     const std::size_t m = stations_[f].size();
@@ -105,14 +139,13 @@ std::vector<std::vector<ReferenceSolver::ContactSide>> ReferenceSolver::assemble
       const Eigen::Vector3d nj_across = nj - nj.dot(t) * t;
       for (const ContactSide& k : sides[f]) {
         const Eigen::Vector3d nk = contacts_[k.contact].normal;
-        entries.emplace_back(j.contact, k.contact,
-                             j.alpha * k.alpha * G[g_offset_[f] + j.station * m + k.station] *
-                                 nj_across.dot(nk - nk.dot(t) * t));
+        W.add(j.contact, k.contact,
+              j.alpha * k.alpha * G[g_offset_[f] + j.station * m + k.station] *
+                  nj_across.dot(nk - nk.dot(t) * t));
       }
     }
   }
-  W_.resize(n, n);
-  W_.setFromTriplets(entries.begin(), entries.end());  // sums the two fibres' parts
+  W.finish();  // the two fibres' parts summed
   return sides;
 }
 
@@ -150,13 +183,17 @@ Eigen::Vector3d ReferenceSolver::reaction_direction(Eigen::Index k, int i, bool 
 // Friction: W with the tangential blocks, W_(j,a)(k,b) = Σ_f G_f(j, k) φ⊥_ja·φ⊥_kb, and q the
 // overlaps d0 and the slips under the scene's loads alone (measured from the step's start).
 void ReferenceSolver::assemble_frictional_problem(
-    const std::vector<double>& G, const std::vector<std::vector<ContactSide>>& sides) {
+    const std::vector<double>& G, const std::vector<std::vector<ContactSide>>& sides,
+    bool in_place) {
   const Eigen::Index n = static_cast<Eigen::Index>(contacts_.size());
   FrictionalProblem& problem = friction_problem_;
   problem.mu = mu_;
+  const std::vector<Eigen::Index> offset_before = problem.offset;
   problem.offset.assign(n + 1, 0);
   for (Eigen::Index k = 0; k < n; ++k)
     problem.offset[k + 1] = problem.offset[k] + 1 + contacts_[k].tangents;
+  // A normal turned along the tow axis takes its slice's tangent away: a new pattern then.
+  in_place = in_place && problem.offset == offset_before;
   const Eigen::Index unknowns = problem.offset[n];
   problem.q.resize(unknowns);
   for (Eigen::Index k = 0; k < n; ++k) {
@@ -172,8 +209,7 @@ void ReferenceSolver::assemble_frictional_problem(
   }
   std::size_t count = 0;
   for (const auto& list : sides) count += list.size() * list.size();
-  std::vector<Eigen::Triplet<double>> frictional;
-  frictional.reserve(4 * count);
+  SparseSum frictional(problem.W, problem.offset[n], in_place, 4 * count);
   for (std::size_t f = 0; f < fibres_.size(); ++f) {
     const std::size_t m = stations_[f].size();
     const Eigen::Vector3d t = fibres_[f].t;
@@ -184,13 +220,12 @@ void ReferenceSolver::assemble_frictional_problem(
         for (const ContactSide& k : sides[f]) {
           const double g = G[g_offset_[f] + j.station * m + k.station];
           for (int b = 0; b <= contacts_[k.contact].tangents; ++b)
-            frictional.emplace_back(problem.offset[j.contact] + a, problem.offset[k.contact] + b,
-                                    g * pj.dot(across(reaction_direction(k.contact, b, k.on_a))));
+            frictional.add(problem.offset[j.contact] + a, problem.offset[k.contact] + b,
+                           g * pj.dot(across(reaction_direction(k.contact, b, k.on_a))));
         }
       }
   }
-  problem.W.resize(unknowns, unknowns);
-  problem.W.setFromTriplets(frictional.begin(), frictional.end());
+  frictional.finish();
   problem.excluded.assign(n, 0);
 }
 

@@ -85,6 +85,7 @@ class ReferenceSolver {
   void solve(Start start = Start::frictionless);
   void follow_the_deformed_fibres();
   void mix_normals(NormalMixing& mixing, std::vector<Contact>& followed) const;
+  void settle_the_friction();
   bool update_active_set();
   void report_progress(int outer) const;
   void report_geometric_update(double residual, double turned) const;
@@ -115,9 +116,11 @@ class ReferenceSolver {
 
   // The contact problem (reference_assembly.cc, reference_solver.cc).
   std::vector<double> loads_and_influence();
-  std::vector<std::vector<ContactSide>> assemble_compliance(const std::vector<double>& G);
+  std::vector<std::vector<ContactSide>> assemble_compliance(const std::vector<double>& G,
+                                                            bool in_place);
   void assemble_frictional_problem(const std::vector<double>& G,
-                                   const std::vector<std::vector<ContactSide>>& sides);
+                                   const std::vector<std::vector<ContactSide>>& sides,
+                                   bool in_place);
   Eigen::Vector3d reaction_direction(Eigen::Index k, int i, bool on_a) const;
   bool solve_frictionless(const std::vector<char>& excluded);
   void solve_friction(const std::vector<char>& excluded, Start start);
