@@ -157,7 +157,7 @@ TrescaSolve tresca_fixed_point(FrictionalProblem& problem, const TrescaOptions& 
   Relaxation relaxation;
   double change = INFINITY, lowest = INFINITY, coulomb_residual = INFINITY;
   int updates = 0, lowest_at = 0;
-  bool newton_tried = false;
+  bool newton_tried = false, exact_radii = false;
   for (updates = 1; updates <= options.max_updates; ++updates) {
     if (one_tangent) {
       Eigen::VectorXd lo, hi;
@@ -173,9 +173,17 @@ TrescaSolve tresca_fixed_point(FrictionalProblem& problem, const TrescaOptions& 
       result.newton_steps += inner.newton_steps;
     }
     if (!inner.settled) break;
+    // Settled with relaxed radii, the fixed point takes one more inner problem and puts the radii
+    // on μP exactly (as the plain update does): a relaxed radius leaves a contact that slips a
+    // hair inside its disk (counted as sticking, with all its slip) or outside the cone.
+    if (exact_radii) {
+      update_radii(problem, compliance, 1.0, r);
+      break;
+    }
     change = update_radii(problem, compliance, relaxation.factor, r);
     relaxation.adapt(change);
-    if (change <= settled) break;
+    if (change <= settled && relaxation.factor == 1.0) break;
+    exact_radii = change <= settled;
     if (change < lowest) lowest = change, lowest_at = updates;
     if (!newton_tried && updates - lowest_at >= options.stall_updates) {
       newton_tried = true;
