@@ -96,7 +96,7 @@ void ReferenceSolver::follow_the_deformed_fibres() {
         residual <= settled || (residual < tolerance_ && residual > 0.5 * before);
     const bool turn_stalled = turned < 1e2 * kSettledTurn && turned > 0.5 * turned_before;
     if (turned <= kUnturned || (gaps_closed && (turned <= kSettledTurn || turn_stalled))) {
-      settle_the_friction();
+      if (update > 0) settle_the_friction();
       return;
     }
     report_geometric_update(residual, turned);
@@ -140,13 +140,12 @@ void ReferenceSolver::mix_normals(NormalMixing& mixing, std::vector<Contact>& fo
       detector_.geometry().turn(followed[k], next.segment<3>(3 * k));
 }
 
-// The answer's friction settled to the Tresca fixed point's own stop, where the last solve of the
-// geometric updates settled it only to the slack of a turn (a turn stalled at the round-off of the
-// finite elements, 1e-6 rad, still leaves radii that far from μP: contacts that slip would count
-// as sticking).
+// The answer's friction settled to the Tresca fixed point's own stop: the last solve of the
+// geometric updates settled it only to a tenth of the slip the turn before misdirects, and the
+// updates may end on a turn stalled near 1e-6 rad (the round-off of the finite elements), far
+// above the round-off of the friction.
 void ReferenceSolver::settle_the_friction() {
-  if (!(mu_ > 0.0) || geometric_updates_ == 0) return;
-  solve(Start::last_answer);
+  if (mu_ > 0.0) solve(Start::last_answer);
 }
 
 // A line per geometric update, for options_.progress: a step on compacted tows can take many.

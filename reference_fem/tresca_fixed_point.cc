@@ -180,9 +180,10 @@ TrescaSolve tresca_fixed_point(FrictionalProblem& problem, const TrescaOptions& 
       update_radii(problem, compliance, 1.0, r);
       break;
     }
-    change = update_radii(problem, compliance, relaxation.factor, r);
+    const double factor = relaxation.factor;
+    change = update_radii(problem, compliance, factor, r);
     relaxation.adapt(change);
-    if (change <= settled && relaxation.factor == 1.0) break;
+    if (change <= settled && factor == 1.0) break;
     exact_radii = change <= settled;
     if (change < lowest) lowest = change, lowest_at = updates;
     if (!newton_tried && updates - lowest_at >= options.stall_updates) {
