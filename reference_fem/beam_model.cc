@@ -123,19 +123,22 @@ struct BeamModel::Implementation {
   FESystem<1, 3> fe;
   DoFHandler<1, 3> dof_handler{triangulation};
   AffineConstraints<double> constraints;
+  /// The solution in the mixed element's unknowns (w1, M1, w2, M2), for every use after a solve.
+  PETScWrappers::MPI::Vector solution;
+  /// The mixed system's matrix, only to build a larger system around it (for_each_matrix_entry).
   PETScWrappers::SparseMatrix system_matrix;
-  PETScWrappers::MPI::Vector solution, system_rhs;
   bool matrix_assembled = false;
-  /// MUMPS factorisation of the system matrix, made once and reused for every load case.
-  KSP direct_solver = nullptr;
-  /// Conjugate gradients with hypre's BoomerAMG on the Laplace matrix (solver cg_amg), set up once.
-  KSP cg_solver = nullptr;
+  /// The Laplace matrix's solver, set up once: MUMPS's Cholesky factor (solver direct) or
+  /// conjugate gradients with hypre's BoomerAMG (cg_amg).
+  KSP laplace_solver = nullptr;
 
-  /// For conjugate gradients: the mixed system is symmetric but indefinite, so it is solved as
-  /// its two symmetric positive definite halves, per plane: K·m = b for the moment (from
-  /// −∫M'ψ' = −∫qψ − ΣPψ(a)), then K·w = A·m for the deflection (from ∫Mφ/EI = ∫w'φ'), with K the
-  /// Laplace matrix ∫ψ'φ' and A the mass matrix ∫ψφ/EI on the scalar quadratic element, both with
-  /// the supports' zero values; K by CG with hypre's BoomerAMG, set up once.
+  /// The mixed system is symmetric but indefinite, and as a whole as badly conditioned as the
+  /// bi-Laplacian it is (about (elements)⁴: a factorisation of it left nodal deflections 1e-8 off
+  /// the exact ones). It is solved as its two symmetric positive definite halves, per plane:
+  /// K·m = b for the moment (from −∫M'ψ' = −∫qψ − ΣPψ(a)), then K·w = A·m for the deflection (from
+  /// ∫Mφ/EI = ∫w'φ'), with K the Laplace matrix ∫ψ'φ' and A the mass matrix ∫ψφ/EI on the scalar
+  /// quadratic element, both with the supports' zero values: each as well conditioned as a
+  /// Laplace problem, and one factor of K serves both halves and both planes.
   BeamSolver solver_kind = BeamSolver::direct;
   FE_Q<1, 3> scalar_fe;
   DoFHandler<1, 3> scalar_dofs{triangulation};
@@ -147,8 +150,7 @@ struct BeamModel::Implementation {
   long cg_iterations = 0;
 
   ~Implementation() {
-    if (direct_solver) KSPDestroy(&direct_solver);
-    if (cg_solver) KSPDestroy(&cg_solver);
+    if (laplace_solver) KSPDestroy(&laplace_solver);
   }
   /// Per fibre: node fraction s → the four DoFs (w1, M1, w2, M2) of that vertex.
   std::vector<std::map<double, std::array<types::global_dof_index, 4>>> nodes;
@@ -210,23 +212,7 @@ struct BeamModel::Implementation {
     }
     constraints.close();
     solution.reinit(MPI_COMM_SELF, dof_handler.n_dofs(), dof_handler.n_dofs());
-    if (solver_kind == BeamSolver::cg_amg) {
-      setup_split_system();
-      return;
-    }
-    // Only w and M of one plane meet in the equations (and the planes not at all): a pattern
-    // that says so holds half the entries, and MUMPS factorises two independent planes.
-    Table<2, DoFTools::Coupling> coupling(4, 4);
-    coupling.fill(DoFTools::none);
-    for (int plane = 0; plane < 2; ++plane) {
-      coupling[kW[plane]][kM[plane]] = DoFTools::always;
-      coupling[kM[plane]][kW[plane]] = DoFTools::always;
-      coupling[kM[plane]][kM[plane]] = DoFTools::always;
-    }
-    DynamicSparsityPattern pattern(dof_handler.n_dofs());
-    DoFTools::make_sparsity_pattern(dof_handler, coupling, pattern, constraints, false);
-    system_matrix.reinit(pattern);
-    system_rhs.reinit(MPI_COMM_SELF, dof_handler.n_dofs(), dof_handler.n_dofs());
+    setup_split_system();
   }
 
   void setup_split_system() {
@@ -278,22 +264,29 @@ struct BeamModel::Implementation {
     }
     laplace.compress(VectorOperation::add);
     mass.compress(VectorOperation::add);
+    check(KSPCreate(PETSC_COMM_SELF, &laplace_solver), "KSPCreate");
+    check(KSPSetOperators(laplace_solver, laplace, laplace), "KSPSetOperators");
+    PC pc;
+    check(KSPGetPC(laplace_solver, &pc), "KSPGetPC");
+    if (solver_kind == BeamSolver::direct) {
+      check(KSPSetType(laplace_solver, KSPPREONLY), "KSPSetType");
+      check(PCSetType(pc, PCCHOLESKY), "PCSetType");
+      check(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS), "PCFactorSetMatSolverType");
+      check(KSPSetUp(laplace_solver), "KSPSetUp (MUMPS factorisation)");
+      return;
+    }
     // CG stops at a relative decrease of 1e-12 of its (preconditioned) residual; BoomerAMG on a
     // one-dimensional Laplace matrix is nearly exact, so that takes one or two iterations.
-    check(KSPCreate(PETSC_COMM_SELF, &cg_solver), "KSPCreate");
-    check(KSPSetOperators(cg_solver, laplace, laplace), "KSPSetOperators");
-    check(KSPSetType(cg_solver, KSPCG), "KSPSetType");
-    check(KSPSetTolerances(cg_solver, 1e-12, 0.0, PETSC_DEFAULT, 1000), "KSPSetTolerances");
-    PC pc;
-    check(KSPGetPC(cg_solver, &pc), "KSPGetPC");
+    check(KSPSetType(laplace_solver, KSPCG), "KSPSetType");
+    check(KSPSetTolerances(laplace_solver, 1e-12, 0.0, PETSC_DEFAULT, 1000), "KSPSetTolerances");
     check(PCSetType(pc, PCHYPRE), "PCSetType");
     check(PCHYPRESetType(pc, "boomeramg"), "PCHYPRESetType");
-    check(KSPSetUp(cg_solver), "KSPSetUp (BoomerAMG)");
+    check(KSPSetUp(laplace_solver), "KSPSetUp (BoomerAMG)");
   }
 
-  /// Both planes by the split system (see `solver_kind`), then the mixed solution vector filled
+  /// Both planes by the two halves (see `solver_kind`), then the mixed solution vector filled
   /// from the scalar ones, so every later use sees one kind of solution.
-  void solve_split(const std::vector<NodalForce>& extra, bool scene_loads) {
+  void solve(const std::vector<NodalForce>& extra, bool scene_loads) {
     const QGauss<1> quadrature(degree + 1);
     FEValues<1, 3> values(scalar_fe, quadrature, update_values | update_JxW_values);
     const unsigned int m = scalar_fe.n_dofs_per_cell();
@@ -321,25 +314,11 @@ struct BeamModel::Implementation {
     };
     for (const NodalForce& force : point_forces(extra, scene_loads))
       add_point_force(force.fibre, force.s, force.force);
-    auto cg = [&](PETScWrappers::MPI::Vector& x, PETScWrappers::MPI::Vector& b) {
-      scalar_constraints.set_zero(b);
-      b.compress(VectorOperation::insert);
-      x = 0;
-      const double norm = b.l2_norm();
-      if (norm == 0.0) return;
-      check(KSPSolve(cg_solver, b, x), "KSPSolve (CG)");
-      converged(cg_solver, "conjugate gradients");
-      judge_solve(laplace, x, b, 1e-10, "conjugate gradients");
-      PetscInt steps = 0;
-      KSPGetIterationNumber(cg_solver, &steps);
-      cg_iterations += steps;
-      scalar_constraints.distribute(x);
-    };
     for (int plane = 0; plane < 2; ++plane) {
       plane_rhs[plane].compress(VectorOperation::add);
-      cg(moment[plane], plane_rhs[plane]);
+      solve_laplace(moment[plane], plane_rhs[plane]);
       mass.vmult(mass_times_moment, moment[plane]);
-      cg(deflection[plane], mass_times_moment);
+      solve_laplace(deflection[plane], mass_times_moment);
     }
     // The mixed solution vector from the scalar ones, cell by cell.
     std::vector<types::global_dof_index> mixed(fe.n_dofs_per_cell());
@@ -356,6 +335,24 @@ struct BeamModel::Implementation {
       ++cell;
     }
     solution.compress(VectorOperation::insert);
+  }
+
+  /// K·x = b with the supports' values zero, judged by its own residual.
+  void solve_laplace(PETScWrappers::MPI::Vector& x, PETScWrappers::MPI::Vector& b) {
+    scalar_constraints.set_zero(b);
+    b.compress(VectorOperation::insert);
+    x = 0;
+    if (b.l2_norm() == 0.0) return;
+    const bool direct = solver_kind == BeamSolver::direct;
+    check(KSPSolve(laplace_solver, b, x), direct ? "KSPSolve (MUMPS)" : "KSPSolve (CG)");
+    converged(laplace_solver, direct ? "MUMPS" : "conjugate gradients");
+    judge_solve(laplace, x, b, direct ? 1e-12 : 1e-10, direct ? "MUMPS" : "conjugate gradients");
+    if (!direct) {
+      PetscInt steps = 0;
+      KSPGetIterationNumber(laplace_solver, &steps);
+      cg_iterations += steps;
+    }
+    scalar_constraints.distribute(x);
   }
 
   /// Fraction of fibre f's length at which a mesh point lies.
@@ -423,32 +420,32 @@ struct BeamModel::Implementation {
     return forces;
   }
 
-  /// The mixed form in both planes; uniform loads integrated, point loads at their nodes.
-  void assemble_system(const std::vector<NodalForce>& extra, bool scene_loads) {
+  /// The mixed form's matrix in both planes. Only w and M of one plane meet in the equations (and
+  /// the planes not at all): the pattern says so.
+  void assemble_mixed_matrix() {
+    Table<2, DoFTools::Coupling> coupling(4, 4);
+    coupling.fill(DoFTools::none);
+    for (int plane = 0; plane < 2; ++plane) {
+      coupling[kW[plane]][kM[plane]] = DoFTools::always;
+      coupling[kM[plane]][kW[plane]] = DoFTools::always;
+      coupling[kM[plane]][kM[plane]] = DoFTools::always;
+    }
+    DynamicSparsityPattern pattern(dof_handler.n_dofs());
+    DoFTools::make_sparsity_pattern(dof_handler, coupling, pattern, constraints, false);
+    system_matrix.reinit(pattern);
     const QGauss<1> quadrature(degree + 2);
     FEValues<1, 3> fe_values(fe, quadrature, update_values | update_gradients | update_JxW_values);
     const unsigned int n = fe.n_dofs_per_cell();
     FullMatrix<double> cell_matrix(n, n);
-    Vector<double> cell_rhs(n);
     std::vector<types::global_dof_index> dof_indices(n);
-    const std::vector<Eigen::Vector2d> q = uniform_loads(scene_loads);
-    // The matrix does not depend on the loads: assembled once, only the right-hand side each time.
-    const bool with_matrix = !matrix_assembled;
-    system_rhs = 0;
-    // Without the matrix and without uniform loads the cells contribute nothing: only point forces.
-    bool distributed = false;
-    for (const Eigen::Vector2d& qf : q) distributed |= !qf.isZero();
     for (const auto& cell : dof_handler.active_cell_iterators()) {
-      if (!with_matrix && !distributed) break;
-      const int f = fibre_of_material.at(cell->material_id());
-      const double EI = fibres[f].EI;
+      const double EI = fibres[fibre_of_material.at(cell->material_id())].EI;
       fe_values.reinit(cell);
       cell_matrix = 0;
-      cell_rhs = 0;
       for (unsigned int k = 0; k < quadrature.size(); ++k)
         for (unsigned int i = 0; i < n; ++i) {
           const unsigned int ci = fe.system_to_component_index(i).first;
-          for (unsigned int j = 0; with_matrix && j < n; ++j) {
+          for (unsigned int j = 0; j < n; ++j) {
             const unsigned int cj = fe.system_to_component_index(j).first;
             double value = 0.0;
             for (int plane = 0; plane < 2; ++plane) {
@@ -460,55 +457,12 @@ struct BeamModel::Implementation {
             }
             cell_matrix(i, j) += value * fe_values.JxW(k);
           }
-          for (int plane = 0; plane < 2; ++plane)
-            if (ci == kW[plane])
-              cell_rhs(i) -= q[f][plane] * fe_values.shape_value(i, k) * fe_values.JxW(k);
         }
       cell->get_dof_indices(dof_indices);
-      if (with_matrix)
-        constraints.distribute_local_to_global(cell_matrix, cell_rhs, dof_indices, system_matrix,
-                                               system_rhs);
-      else
-        constraints.distribute_local_to_global(cell_rhs, dof_indices, system_rhs);
+      constraints.distribute_local_to_global(cell_matrix, dof_indices, system_matrix);
     }
-    if (with_matrix) system_matrix.compress(VectorOperation::add);
+    system_matrix.compress(VectorOperation::add);
     matrix_assembled = true;
-    for (const NodalForce& force : point_forces(extra, scene_loads)) {
-      const int f = force.fibre;
-      const auto dofs = node(nodes, f, force.s);
-      const Eigen::Vector2d p(force.force.dot(fibres[f].e1), force.force.dot(fibres[f].e2));
-      for (int plane = 0; plane < 2; ++plane)
-        if (!constraints.is_constrained(dofs[kW[plane]]))
-          system_rhs(dofs[kW[plane]]) -= p[plane];  // −Σ P ψ(a)
-    }
-    system_rhs.compress(VectorOperation::add);
-  }
-
-  /// The symmetric indefinite system by MUMPS's LDLᵀ with 2×2 pivots (a direct solve: no
-  /// tolerance in the answer; half the memory of LU), factorised on the first call and reused for
-  /// every later load case.
-  void solve() {
-    if (!direct_solver) {
-      check(KSPCreate(PETSC_COMM_SELF, &direct_solver), "KSPCreate");
-      check(KSPSetOperators(direct_solver, system_matrix, system_matrix), "KSPSetOperators");
-      check(KSPSetType(direct_solver, KSPPREONLY), "KSPSetType");
-      PC pc;
-      check(KSPGetPC(direct_solver, &pc), "KSPGetPC");
-      check(PCSetType(pc, PCCHOLESKY), "PCSetType");
-      check(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS), "PCFactorSetMatSolverType");
-      // One step of iterative refinement (ICNTL(10) = -1: always one): the mixed w–M system is
-      // badly scaled, and the round-off of a solve is the floor of every overlap the contact
-      // problem can resolve.
-      check(PCFactorSetUpMatSolverType(pc), "PCFactorSetUpMatSolverType");
-      Mat factor;
-      check(PCFactorGetMatrix(pc, &factor), "PCFactorGetMatrix");
-      check(MatMumpsSetIcntl(factor, 10, -1), "MatMumpsSetIcntl");
-      check(KSPSetUp(direct_solver), "KSPSetUp (MUMPS factorisation)");
-    }
-    check(KSPSolve(direct_solver, system_rhs, solution), "KSPSolve (MUMPS)");
-    converged(direct_solver, "MUMPS");
-    judge_solve(system_matrix, solution, system_rhs, 1e-12, "MUMPS");
-    constraints.distribute(solution);
   }
 };
 
@@ -524,12 +478,7 @@ void BeamModel::run(const std::vector<NodalForce>& extra, bool scene_loads) {
   if (impl_->dof_handler.n_dofs() == 0) impl_->setup_system();
   impl_->last_forces = impl_->point_forces(extra, scene_loads);
   impl_->last_scene_loads = scene_loads;
-  if (impl_->solver_kind == BeamSolver::cg_amg) {
-    impl_->solve_split(extra, scene_loads);
-    return;
-  }
-  impl_->assemble_system(extra, scene_loads);
-  impl_->solve();
+  impl_->solve(extra, scene_loads);
 }
 
 std::vector<Eigen::MatrixXd> BeamModel::influence_matrices(
@@ -562,34 +511,44 @@ std::vector<Eigen::MatrixXd> BeamModel::influence_matrices(
     }
     return G;
   }
-  // MUMPS: blocks of right-hand sides through the factorisation (MatMatSolve), read back from
-  // the dense solution block. A unit force along e1 enters the w1 row as −1 (−ΣPψ(a)). Eight
-  // columns a block: the two dense blocks then take 128 bytes per unknown, about what the
-  // factorisation takes, and wider blocks hardly solve faster.
-  if (!m.matrix_assembled) run({}, false);  // assembles and factorises
+  // MUMPS: blocks of right-hand sides through the Laplace matrix's factor (MatMatSolve) twice, the
+  // moments between multiplied by the mass matrix, read back from the dense deflection block. A
+  // unit force along e1 enters the moment equation as +1 at its node. Eight columns a block: the
+  // dense blocks then take about what the factor takes, and wider blocks hardly solve faster.
   std::vector<std::vector<types::global_dof_index>> w1(fibres);
   for (std::size_t f = 0; f < fibres; ++f)
     if (G[f].size() > 0)
-      for (double s : stations[f]) w1[f].push_back(m.node(m.nodes, static_cast<int>(f), s)[kW[0]]);
+      for (double s : stations[f]) w1[f].push_back(m.node(m.scalar_nodes, static_cast<int>(f), s));
+  std::vector<types::global_dof_index> supports;
+  for (types::global_dof_index i = 0; i < m.scalar_dofs.n_dofs(); ++i)
+    if (m.scalar_constraints.is_constrained(i)) supports.push_back(i);
   Mat factor;
   PC pc;
-  check(KSPGetPC(m.direct_solver, &pc), "KSPGetPC");
+  check(KSPGetPC(m.laplace_solver, &pc), "KSPGetPC");
   check(PCFactorGetMatrix(pc, &factor), "PCFactorGetMatrix");
-  const PetscInt n = static_cast<PetscInt>(m.dof_handler.n_dofs());
+  const PetscInt n = static_cast<PetscInt>(m.scalar_dofs.n_dofs());
   constexpr std::size_t kBlock = 8;
   for (std::size_t first = 0; first < rounds; first += kBlock) {
     const PetscInt columns = static_cast<PetscInt>(std::min(kBlock, rounds - first));
-    Mat B, X;
+    Mat B, moments, loads, X;
     check(MatCreateSeqDense(PETSC_COMM_SELF, n, columns, nullptr, &B), "MatCreateSeqDense");
+    check(MatCreateSeqDense(PETSC_COMM_SELF, n, columns, nullptr, &moments), "MatCreateSeqDense");
     check(MatCreateSeqDense(PETSC_COMM_SELF, n, columns, nullptr, &X), "MatCreateSeqDense");
     PetscScalar* b = nullptr;
     check(MatDenseGetArray(B, &b), "MatDenseGetArray");
     for (PetscInt c = 0; c < columns; ++c)
       for (std::size_t f = 0; f < fibres; ++f)
-        if (first + c < w1[f].size() && !m.constraints.is_constrained(w1[f][first + c]))
-          b[static_cast<std::size_t>(c) * n + w1[f][first + c]] = -1.0;
+        if (first + c < w1[f].size() && !m.scalar_constraints.is_constrained(w1[f][first + c]))
+          b[static_cast<std::size_t>(c) * n + w1[f][first + c]] = 1.0;
     check(MatDenseRestoreArray(B, &b), "MatDenseRestoreArray");
-    check(MatMatSolve(factor, B, X), "MatMatSolve (MUMPS)");
+    check(MatMatSolve(factor, B, moments), "MatMatSolve (MUMPS)");
+    check(MatMatMult(m.mass.petsc_matrix(), moments, MAT_INITIAL_MATRIX, PETSC_DEFAULT, &loads),
+          "MatMatMult");
+    check(MatDenseGetArray(loads, &b), "MatDenseGetArray");
+    for (PetscInt c = 0; c < columns; ++c)
+      for (types::global_dof_index i : supports) b[static_cast<std::size_t>(c) * n + i] = 0.0;
+    check(MatDenseRestoreArray(loads, &b), "MatDenseRestoreArray");
+    check(MatMatSolve(factor, loads, X), "MatMatSolve (MUMPS)");
     const PetscScalar* x = nullptr;
     check(MatDenseGetArrayRead(X, &x), "MatDenseGetArrayRead");
     for (PetscInt c = 0; c < columns; ++c)
@@ -597,12 +556,14 @@ std::vector<Eigen::MatrixXd> BeamModel::influence_matrices(
         const std::size_t i = first + c;
         if (i >= w1[f].size()) continue;
         for (std::size_t j = 0; j < w1[f].size(); ++j)
-          G[f](j, i) = m.constraints.is_constrained(w1[f][j])
+          G[f](j, i) = m.scalar_constraints.is_constrained(w1[f][j])
                            ? 0.0
                            : x[static_cast<std::size_t>(c) * n + w1[f][j]];
       }
     check(MatDenseRestoreArrayRead(X, &x), "MatDenseRestoreArrayRead");
     MatDestroy(&B);
+    MatDestroy(&moments);
+    MatDestroy(&loads);
     MatDestroy(&X);
     if (progress) progress(first + static_cast<std::size_t>(columns), rounds);
   }
@@ -702,10 +663,8 @@ long BeamModel::deflection_unknown(int fibre, double s, int plane) const {
 
 void BeamModel::for_each_matrix_entry(const std::function<void(long, long, double)>& entry) {
   Implementation& m = *impl_;
-  if (m.solver_kind != BeamSolver::direct)
-    throw std::logic_error(
-        "BeamModel: the mixed system's matrix is assembled by solver direct only");
-  if (!m.matrix_assembled) run({}, false);
+  if (m.dof_handler.n_dofs() == 0) m.setup_system();
+  if (!m.matrix_assembled) m.assemble_mixed_matrix();
   const PetscInt rows = static_cast<PetscInt>(m.dof_handler.n_dofs());
   for (PetscInt row = 0; row < rows; ++row) {
     PetscInt count = 0;

@@ -13,8 +13,8 @@ namespace fibrecheck {
 
 /// Linear solver of the beams' finite-element systems.
 enum class BeamSolver {
-  direct,  ///< MUMPS LU of the mixed system, factorised once and reused (default)
-  cg_amg   ///< conjugate gradients with hypre's BoomerAMG on the system's two Laplace halves
+  direct,  ///< MUMPS's Cholesky factor of the Laplace matrix, made once, for both halves (default)
+  cg_amg   ///< conjugate gradients with hypre's BoomerAMG on the Laplace matrix
 };
 
 /// A point force on the finite-element beams (N), at a mesh node of one fibre.
@@ -92,7 +92,7 @@ class BeamModel {
 
   /// Calls `entry(row, column, value)` for every stored entry of the mixed system's matrix (with
   /// the supports' rows and columns condensed to their diagonal, as the solves use it), to build a
-  /// larger system around it; the matrix is assembled first if it is not yet (solver `direct`).
+  /// larger system around it; the matrix is assembled on the first call.
   void for_each_matrix_entry(const std::function<void(long, long, double)>& entry);
 
   /// Conjugate-gradient iterations so far (solver cg_amg).
