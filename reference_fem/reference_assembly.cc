@@ -50,11 +50,12 @@ class SparseSum {
 // friction its tangential blocks), from finite-element solutions.
 void ReferenceSolver::assemble_system() {
   dealii::TimerOutput::Scope scope(timer_, "assemble_system");
-  std::vector<double> G = loads_and_influence();
-  const std::vector<std::vector<ContactSide>> sides = assemble_compliance(G, false);
-  if (mu_ > 0.0) assemble_frictional_problem(G, sides, false);
-  // The deformed contact assembles again about new normals on the same mesh.
-  if (detector_.geometry().deformed()) G_ = std::move(G);
+  G_ = loads_and_influence();
+  const std::vector<std::vector<ContactSide>> sides = assemble_compliance(G_, false);
+  if (mu_ > 0.0) assemble_frictional_problem(G_, sides, false);
+  // Shared, W is applied through them; the deformed contact assembles again about new normals on
+  // the same mesh.
+  if (!compliance_shared() && !detector_.geometry().deformed()) G_ = {};
 }
 
 // The displacements u0_ at every station under the scene's loads, and the influence matrices G_f
@@ -103,9 +104,10 @@ std::vector<double> ReferenceSolver::loads_and_influence() {
 }
 
 // The overlaps d0_ under the scene's loads and W_jk = Σ_f α_j α_k G_f(j, k) n_j⊥·n_k⊥ over the
-// fibres both contacts act on, ⊥ the part across the fibre (mm/N); shared, the sum over this
-// process's fibres. Returns each fibre's contact sides, from which the frictional blocks are
-// assembled alike. `in_place`: W has the pattern of these candidates already (new normals only).
+// fibres both contacts act on, ⊥ the part across the fibre (mm/N); shared, W applied through this
+// process's fibres' influence matrices (influence_compliance.h), never formed. Returns each fibre's
+// contact sides, from which the frictional blocks are assembled alike. `in_place`: W has the
+// pattern of these candidates already (new normals only).
 std::vector<std::vector<ReferenceSolver::ContactSide>> ReferenceSolver::assemble_compliance(
     const std::vector<double>& G, bool in_place) {
   const Eigen::Index n = static_cast<Eigen::Index>(contacts_.size());
@@ -124,26 +126,34 @@ std::vector<std::vector<ReferenceSolver::ContactSide>> ReferenceSolver::assemble
     make_saddle_point(sides);
     return sides;
   }
-  // Shared, each process assembles the part of its own fibres.
-  const auto held = [&](std::size_t f) { return owned_[f] || !compliance_shared(); };
-  std::size_t count = 0;
-  for (std::size_t f = 0; f < fibres_.size(); ++f)
-    if (held(f)) count += sides[f].size() * sides[f].size();
-  SparseSum W(W_, n, in_place, count);
-  for (std::size_t f = 0; f < fibres_.size(); ++f) {
-    if (!held(f)) continue;
-    const std::size_t m = stations_[f].size();
-    const Eigen::Vector3d t = fibres_[f].t;
-    for (const ContactSide& j : sides[f]) {
-      const Eigen::Vector3d nj = contacts_[j.contact].normal;
-      const Eigen::Vector3d nj_across = nj - nj.dot(t) * t;
-      for (const ContactSide& k : sides[f]) {
-        const Eigen::Vector3d nk = contacts_[k.contact].normal;
-        W.add(j.contact, k.contact,
-              j.alpha * k.alpha * G[g_offset_[f] + j.station * m + k.station] *
-                  nj_across.dot(nk - nk.dot(t) * t));
-      }
+  const auto across = [&](std::size_t f, const ContactSide& side) {
+    const Eigen::Vector3d t = fibres_[f].t, n = contacts_[side.contact].normal;
+    return Eigen::Vector3d(side.alpha * (n - n.dot(t) * t));
+  };
+  if (compliance_shared()) {
+    std::vector<InfluenceCompliance::Fibre> held;
+    for (std::size_t f = 0; f < fibres_.size(); ++f) {
+      if (!owned_[f]) continue;
+      InfluenceCompliance::Fibre fibre{&G[g_offset_[f]], static_cast<int>(stations_[f].size()), {}};
+      for (const ContactSide& side : sides[f])
+        fibre.sides.push_back({side.contact, side.station, across(f, side)});
+      held.push_back(std::move(fibre));
     }
+    influence_ = std::make_unique<InfluenceCompliance>(std::move(held), n, comm_);
+    return sides;
+  }
+  std::size_t count = 0;
+  for (const auto& list : sides) count += list.size() * list.size();
+  SparseSum W(W_, n, in_place, count);
+  std::vector<Eigen::Vector3d> phi;
+  for (std::size_t f = 0; f < fibres_.size(); ++f) {
+    const std::size_t m = stations_[f].size();
+    phi.clear();
+    for (const ContactSide& side : sides[f]) phi.push_back(across(f, side));
+    for (std::size_t j = 0; j < sides[f].size(); ++j)
+      for (std::size_t k = 0; k < sides[f].size(); ++k)
+        W.add(sides[f][j].contact, sides[f][k].contact,
+              G[g_offset_[f] + sides[f][j].station * m + sides[f][k].station] * phi[j].dot(phi[k]));
   }
   W.finish();  // the two fibres' parts summed
   return sides;

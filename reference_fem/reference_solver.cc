@@ -22,7 +22,6 @@
 #include "primal_dual_active_set.h"
 #include "process_sums.h"
 #include "reference_solver_class.h"
-#include "shared_compliance.h"
 #include "tresca_fixed_point.h"
 #include "unresolvable_overlap.h"
 
@@ -160,6 +159,7 @@ void ReferenceSolver::make_grid() {
   dealii::TimerOutput::Scope scope(timer_, "make_grid");
   collect_stations();
   saddle_.reset();
+  influence_.reset();
   model_.reset();
   // A process with more processes than fibres may own none: it then only takes part in the sums.
   const bool owns = std::any_of(owned_.begin(), owned_.end(), [](char o) { return o != 0; });
@@ -201,8 +201,9 @@ void ReferenceSolver::solve(Start start) {
   std::vector<double> overlap(d0_.data(), d0_.data() + n), compliance(n);
   // Held as saddle points, a contact nothing can move is one whose every side is pinned.
   const std::vector<char> pinned = saddle_ ? saddle_->immovable() : std::vector<char>();
-  const Eigen::VectorXd diagonal =
-      compliance_shared() && !saddle_ ? SharedCompliance(W_, comm_).diagonal() : W_.diagonal();
+  const Eigen::VectorXd diagonal = saddle_               ? Eigen::VectorXd()
+                                   : compliance_shared() ? influence_->diagonal()
+                                                         : W_.diagonal();
   for (Eigen::Index k = 0; k < n; ++k)
     compliance[k] = saddle_ ? (pinned[k] ? 0.0 : std::numeric_limits<double>::max()) : diagonal[k];
   if (auto why = find_unresolvable_overlap(contacts_, overlap, compliance, tolerance_, fibres_,
@@ -236,10 +237,10 @@ bool ReferenceSolver::solve_frictionless(const std::vector<char>& excluded) {
   const Eigen::Index n = d0_.size();
   pushing_.resize(n, 0);
   const AssembledCompliance assembled(W_);
-  const SharedCompliance shared(W_, comm_);
   const ContactCompliance& W = saddle_ ? static_cast<const ContactCompliance&>(*saddle_)
-                               : compliance_shared() ? static_cast<const ContactCompliance&>(shared)
-                                                     : assembled;
+                               : compliance_shared()
+                                   ? *influence_
+                                   : static_cast<const ContactCompliance&>(assembled);
   // The primal-dual active set changes the set as much as it needs in a pass, and from a warm
   // start (the pushing set of the last geometric update or outer iteration) it takes a handful.
   // From cold its first set is every contact that overlaps under the loads alone, on a tow many
@@ -482,8 +483,8 @@ void ReferenceSolver::collect_stations() {
   check_memory_reach();
 }
 
-// The influence matrices are dense per fibre, and each process holds those of its own fibres and
-// their part of W (shared) or all of them and W; the finite elements of its own fibres grow with
+// The influence matrices are dense per fibre, and each process holds those of its own fibres
+// (shared) or all of them and W; the finite elements of its own fibres grow with
 // their unknowns. A problem that would not fit in the memory the machine has is not made: the step
 // ends beyond reach, with what it would need on the process that needs most, rather than
 // exhausting the machine in the middle of it. Where the contact problem alone is too much, the
@@ -492,9 +493,10 @@ void ReferenceSolver::collect_stations() {
 void ReferenceSolver::check_memory_reach() {
   std::vector<std::size_t> count(fibres_.size(), 0), sides(fibres_.size(), 0), frictional;
   if (mu_ > 0.0) frictional.assign(fibres_.size(), 0);
+  // Shared, W is never formed: only the influence matrices of the process's own fibres.
   for (const Contact& c : contacts_)
     for (const int f : {c.a, c.kind == ContactKind::wall ? -1 : c.b}) {
-      if (f < 0 || (compliance_shared() && !owned_[f])) continue;
+      if (f < 0 || compliance_shared()) continue;
       ++sides[f];
       if (mu_ > 0.0) frictional[f] += 1 + c.tangents;
     }

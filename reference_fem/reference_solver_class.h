@@ -23,6 +23,7 @@
 #include "fibre.h"
 #include "fibre_mesh.h"
 #include "frictional_contact.h"
+#include "influence_compliance.h"
 #include "normal_mixing.h"
 #include "reference_result.h"
 #include "reference_solver.h"
@@ -135,8 +136,8 @@ class ReferenceSolver {
   bool saddle_point() const {
     return saddle_point_possible() && options_.contact_assembly == ContactAssembly::saddle_point;
   }
-  /// W is shared out over the processes by fibres (shared_compliance.h): each holds its own fibres'
-  /// influence matrices and part of W. Friction and a problem handed out take the whole W.
+  /// W is shared out over the processes by fibres and applied through their influence matrices
+  /// (influence_compliance.h), never formed. Friction and a problem handed out take the whole W.
   bool compliance_shared() const { return mu_ == 0.0 && !options_.contact_problem; }
   void make_saddle_point(const std::vector<std::vector<ContactSide>>& sides);
 
@@ -178,16 +179,19 @@ class ReferenceSolver {
   std::string mesh_file_;
   std::unique_ptr<BeamModel> model_;
   std::vector<double> u0_;  ///< displacements at every station under the scene's loads
-  std::vector<double> G_;   ///< the influence matrices of the current mesh (deformed contact)
+  /// The influence matrices of the current mesh (this process's fibres' where the compliance is
+  /// shared, and for the deformed contact).
+  std::vector<double> G_;
   long geometric_updates_ = 0;
   /// The contacts with the places their crossings moved to, for the next detection to keep.
   std::vector<Contact> moved_crossings_;
   bool remesh_ = false;  ///< deformed contact: a crossing moved off its station
   int crossing_moves_ = 0;
   Eigen::VectorXd d0_, P_;
-  /// W is sparse: two contacts interact only through a fibre they share. Where the compliance is
-  /// shared, this process's part of it.
+  /// W is sparse: two contacts interact only through a fibre they share.
   Eigen::SparseMatrix<double> W_;
+  /// Or, shared, W applied through G_ (compliance_shared()).
+  std::unique_ptr<InfluenceCompliance> influence_;
   /// Or W never formed (saddle_point()).
   std::unique_ptr<SaddlePointCompliance> saddle_;
   std::vector<char> pushing_;
