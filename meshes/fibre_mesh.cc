@@ -183,7 +183,8 @@ std::string geo_script(const Scene& scene, const MeshOptions& options) {
   std::ostringstream out;
   out.precision(17);
   out << "// " << scene.name << ": each fibre's chord with nodes at its supports, slices, loads\n"
-      << "// and contact points (refined there). Mesh with: gmsh -1 " << scene.name << ".geo\n";
+      << "// and contact points" << (options.contact_refinement > 1.0 ? " (refined there)" : "")
+      << ". Mesh with: gmsh -1 " << scene.name << ".geo\n";
   int point = 0, line = 0, group = 0;
   for (std::size_t i = 0; i < scene.fibres.size(); ++i) {
     const FibreSpec& spec = scene.fibres[i];

@@ -1,6 +1,7 @@
 #include "influence_compliance.h"
 
 #include <Eigen/SparseCore>
+#include <algorithm>
 #include <numeric>
 #include <utility>
 
@@ -44,6 +45,21 @@ std::vector<Eigen::Triplet<double>> gathered(const std::vector<int>& rows,
 
 }  // namespace
 
+InfluenceCompliance::InfluenceCompliance(std::vector<Fibre> fibres, Eigen::Index contacts,
+                                         MPI_Comm communicator)
+    : fibres_(std::move(fibres)), contacts_(contacts), comm_(communicator) {
+  first_.assign(static_cast<std::size_t>(contacts_) + 1, 0);
+  for (const Fibre& f : fibres_)
+    for (const Side& side : f.sides) ++first_[static_cast<std::size_t>(side.contact) + 1];
+  std::partial_sum(first_.begin(), first_.end(), first_.begin());
+  held_.resize(first_.back());
+  std::vector<std::size_t> next(first_.begin(), first_.end() - 1);
+  for (std::size_t f = 0; f < fibres_.size(); ++f)
+    for (std::size_t i = 0; i < fibres_[f].sides.size(); ++i)
+      held_[next[static_cast<std::size_t>(fibres_[f].sides[i].contact)]++] = {static_cast<int>(f),
+                                                                              static_cast<int>(i)};
+}
+
 // Per fibre: the forces x puts on its stations (few: x is mostly zero), then the displacement
 // across the fibre they give at each side's station, along its φ.
 Eigen::VectorXd InfluenceCompliance::times(const Eigen::VectorXd& x) const {
@@ -75,26 +91,37 @@ Eigen::VectorXd InfluenceCompliance::diagonal() const {
   return summed_over_processes(d, comm_);
 }
 
-// The set's entries of this process's fibres, in the set's numbering, then those of every process
-// in the order of the processes: every process sums the same entries alike into the same W_SS.
+// The set's entries of this process's fibres, in the set's numbering (found from the set's own
+// contacts, fibre by fibre), then those of every process in the order of the processes: every
+// process sums the same entries alike into the same W_SS.
 bool InfluenceCompliance::solve_on_subset(const std::vector<Eigen::Index>& index,
                                           const Eigen::VectorXd& b, Eigen::VectorXd& x) const {
   const int m = static_cast<int>(index.size());
-  std::vector<int> position(static_cast<std::size_t>(contacts_), -1);
-  for (int i = 0; i < m; ++i) position[static_cast<std::size_t>(index[i])] = i;
+  struct InSet {
+    int fibre, side, position;
+  };
+  std::vector<InSet> in_set;
+  for (int i = 0; i < m; ++i) {
+    const std::size_t k = static_cast<std::size_t>(index[i]);
+    for (std::size_t h = first_[k]; h < first_[k + 1]; ++h)
+      in_set.push_back({held_[h].fibre, held_[h].side, i});
+  }
+  std::sort(in_set.begin(), in_set.end(), [](const InSet& p, const InSet& q) {
+    return p.fibre != q.fibre ? p.fibre < q.fibre : p.side < q.side;
+  });
   std::vector<int> rows, columns;
   std::vector<double> values;
-  std::vector<const Side*> in_set;
-  for (const Fibre& f : fibres_) {
-    in_set.clear();
-    for (const Side& side : f.sides)
-      if (position[static_cast<std::size_t>(side.contact)] >= 0) in_set.push_back(&side);
-    for (const Side* j : in_set) {
-      const double* column = f.G + static_cast<std::ptrdiff_t>(j->station) * f.stations;
-      for (const Side* k : in_set) {
-        rows.push_back(position[static_cast<std::size_t>(k->contact)]);
-        columns.push_back(position[static_cast<std::size_t>(j->contact)]);
-        values.push_back(column[k->station] * k->direction.dot(j->direction));
+  for (std::size_t begin = 0, end = 0; begin < in_set.size(); begin = end) {
+    const Fibre& f = fibres_[static_cast<std::size_t>(in_set[begin].fibre)];
+    while (end < in_set.size() && in_set[end].fibre == in_set[begin].fibre) ++end;
+    for (std::size_t j = begin; j < end; ++j) {
+      const Side& sj = f.sides[static_cast<std::size_t>(in_set[j].side)];
+      const double* column = f.G + static_cast<std::ptrdiff_t>(sj.station) * f.stations;
+      for (std::size_t k = begin; k < end; ++k) {
+        const Side& sk = f.sides[static_cast<std::size_t>(in_set[k].side)];
+        rows.push_back(in_set[k].position);
+        columns.push_back(in_set[j].position);
+        values.push_back(column[sk.station] * sk.direction.dot(sj.direction));
       }
     }
   }

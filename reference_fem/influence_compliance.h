@@ -38,8 +38,7 @@ class InfluenceCompliance : public ContactCompliance {
     std::vector<Side> sides;
   };
 
-  InfluenceCompliance(std::vector<Fibre> fibres, Eigen::Index contacts, MPI_Comm communicator)
-      : fibres_(std::move(fibres)), contacts_(contacts), comm_(communicator) {}
+  InfluenceCompliance(std::vector<Fibre> fibres, Eigen::Index contacts, MPI_Comm communicator);
   Eigen::VectorXd times(const Eigen::VectorXd& x) const override;
   bool solve_on_subset(const std::vector<Eigen::Index>& index, const Eigen::VectorXd& b,
                        Eigen::VectorXd& x) const override;
@@ -47,9 +46,16 @@ class InfluenceCompliance : public ContactCompliance {
   Eigen::VectorXd diagonal() const;
 
  private:
+  /// A side held here: its fibre (in fibres_) and its place in that fibre's sides.
+  struct Held {
+    int fibre, side;
+  };
   std::vector<Fibre> fibres_;
   Eigen::Index contacts_;
   MPI_Comm comm_;
+  /// The sides of contact k held here: held_[first_[k]] to held_[first_[k + 1]].
+  std::vector<std::size_t> first_;
+  std::vector<Held> held_;
 };
 
 }  // namespace fibrecheck

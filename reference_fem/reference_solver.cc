@@ -535,7 +535,6 @@ double ReferenceSolver::own_unknowns() const {
 MeshOptions ReferenceSolver::mesh_options() const {
   MeshOptions mesh;
   mesh.size_per_slice = std::ldexp(1.0, -std::max(options_.refine, 0));
-  mesh.contact_refinement = 1.0;
   mesh.contact_stations = stations_;
   mesh.sample_stations.assign(fibres_.size(), sample_s_);
   return mesh;
