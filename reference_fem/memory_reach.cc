@@ -27,11 +27,11 @@ MemoryNeed contact_problem_memory(const std::vector<std::size_t>& stations,
   return need;
 }
 
-// Measured on generated tows of 300 and 1 000 fibres (docs/reference.md, "Memory per process"):
-// about 0.55 kB per unknown before the influence matrices, and their blocks of eight right-hand
-// sides add 0.13 kB.
+// Measured on generated tows of 1 000 to 12 000 fibres (docs/reference.md, "Memory per process"):
+// the peak resident memory of a process, less the libraries' pages and its influence matrices,
+// came to 0.40–0.45 kB per unknown of its fibres.
 double finite_element_memory(double unknowns) {
-  constexpr double kBytesPerUnknown = 700.0;
+  constexpr double kBytesPerUnknown = 450.0;
   return kBytesPerUnknown * unknowns;
 }
 

@@ -21,8 +21,8 @@ struct MemoryNeed {
 };
 
 /// What the finite elements of `unknowns` unknowns take at their peak (bytes): Gmsh's model while
-/// it meshes them, the beams' matrix and MUMPS's factorisation, and the blocks of right-hand sides
-/// the influence matrices are solved in.
+/// it meshes them, the beams' matrices and MUMPS's factor of the Laplace matrix, and the blocks of
+/// right-hand sides the influence matrices are solved in.
 double finite_element_memory(double unknowns);
 
 /// The need of `stations` contact stations and `sides` contacts acting on each fibre, and with
