@@ -127,9 +127,13 @@ void write_scale_section(ReportPage& page, const std::vector<ScaleStudy>& studie
       "iterative solver's rules, the reference under mpiexec and Siconos on the reference's "
       "exported contact problem (Lemke's pivoting, projected Gauss-Seidel and a Newton method on "
       "the linear complementarity problem). Time is the solver's own (without start-up and "
-      "files); peak memory is the process's (the largest process's under mpiexec; the program "
-      "links the finite-element libraries, about 150 MB of it). For the reference the iterations "
-      "are its outer iterations; its active-set passes are in its result files.");
+      "files); peak memory is the process's resident memory (the largest process's under "
+      "mpiexec; the program links the finite-element libraries, about 150 MB of it, which every "
+      "process counts and the machine holds once). For the reference the iterations are its "
+      "outer iterations; its active-set passes are in its result files. The reference run that "
+      "exports its contact problem for Siconos (on the most processes) forms the whole compliance "
+      "matrix W on every process to do so; without that, each process holds only its own "
+      "fibres' influence matrices and W is never formed.");
   for (const ScaleStudy& study : studies) {
     Table t = scale_table(study);
     t.caption += exponents_sentence(study);
