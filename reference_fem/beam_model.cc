@@ -527,25 +527,30 @@ std::vector<Eigen::MatrixXd> BeamModel::influence_matrices(
   check(KSPGetPC(m.laplace_solver, &pc), "KSPGetPC");
   check(PCFactorGetMatrix(pc, &factor), "PCFactorGetMatrix");
   const PetscInt n = static_cast<PetscInt>(m.scalar_dofs.n_dofs());
+  if (rounds == 0) return G;
+  // The blocks are made once (a short last block solves some zero columns too).
   constexpr std::size_t kBlock = 8;
+  const PetscInt width = static_cast<PetscInt>(std::min(kBlock, rounds));
+  Mat B, moments, loads = nullptr, X;
+  check(MatCreateSeqDense(PETSC_COMM_SELF, n, width, nullptr, &B), "MatCreateSeqDense");
+  check(MatCreateSeqDense(PETSC_COMM_SELF, n, width, nullptr, &moments), "MatCreateSeqDense");
+  check(MatCreateSeqDense(PETSC_COMM_SELF, n, width, nullptr, &X), "MatCreateSeqDense");
   for (std::size_t first = 0; first < rounds; first += kBlock) {
     const PetscInt columns = static_cast<PetscInt>(std::min(kBlock, rounds - first));
-    Mat B, moments, loads, X;
-    check(MatCreateSeqDense(PETSC_COMM_SELF, n, columns, nullptr, &B), "MatCreateSeqDense");
-    check(MatCreateSeqDense(PETSC_COMM_SELF, n, columns, nullptr, &moments), "MatCreateSeqDense");
-    check(MatCreateSeqDense(PETSC_COMM_SELF, n, columns, nullptr, &X), "MatCreateSeqDense");
     PetscScalar* b = nullptr;
     check(MatDenseGetArray(B, &b), "MatDenseGetArray");
+    std::fill(b, b + static_cast<std::size_t>(width) * n, 0.0);
     for (PetscInt c = 0; c < columns; ++c)
       for (std::size_t f = 0; f < fibres; ++f)
         if (first + c < w1[f].size() && !m.scalar_constraints.is_constrained(w1[f][first + c]))
           b[static_cast<std::size_t>(c) * n + w1[f][first + c]] = 1.0;
     check(MatDenseRestoreArray(B, &b), "MatDenseRestoreArray");
     check(MatMatSolve(factor, B, moments), "MatMatSolve (MUMPS)");
-    check(MatMatMult(m.mass.petsc_matrix(), moments, MAT_INITIAL_MATRIX, PETSC_DEFAULT, &loads),
+    check(MatMatMult(m.mass.petsc_matrix(), moments, loads ? MAT_REUSE_MATRIX : MAT_INITIAL_MATRIX,
+                     PETSC_DEFAULT, &loads),
           "MatMatMult");
     check(MatDenseGetArray(loads, &b), "MatDenseGetArray");
-    for (PetscInt c = 0; c < columns; ++c)
+    for (PetscInt c = 0; c < width; ++c)
       for (types::global_dof_index i : supports) b[static_cast<std::size_t>(c) * n + i] = 0.0;
     check(MatDenseRestoreArray(loads, &b), "MatDenseRestoreArray");
     check(MatMatSolve(factor, loads, X), "MatMatSolve (MUMPS)");
@@ -561,12 +566,12 @@ std::vector<Eigen::MatrixXd> BeamModel::influence_matrices(
                            : x[static_cast<std::size_t>(c) * n + w1[f][j]];
       }
     check(MatDenseRestoreArrayRead(X, &x), "MatDenseRestoreArrayRead");
-    MatDestroy(&B);
-    MatDestroy(&moments);
-    MatDestroy(&loads);
-    MatDestroy(&X);
     if (progress) progress(first + static_cast<std::size_t>(columns), rounds);
   }
+  MatDestroy(&B);
+  MatDestroy(&moments);
+  MatDestroy(&loads);
+  MatDestroy(&X);
   return G;
 }
 
