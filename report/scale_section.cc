@@ -27,11 +27,12 @@ Table scale_table(const ScaleStudy& study) {
   t.caption = "Cost against tow size (" + std::to_string(study.slices) + " slices, seed " +
               std::to_string(study.seed) +
               "): candidate and pushing contacts, iterations, time, time per iteration and peak "
-              "memory (for the reference, over all its processes per finite-element unknown); for "
-              "Siconos, its distance from the reference's answer.";
-  t.header = {"Fibres",    "Run",        "Status",           "Candidates",
-              "Active",    "Iterations", "Time (s)",         "ms/iteration",
-              "Peak (MB)", "kB/unknown", "Against reference"};
+              "memory, resident and proportional (for the reference, resident over all its "
+              "processes per finite-element unknown); for Siconos, its distance from the "
+              "reference's answer.";
+  t.header = {"Fibres",    "Run",          "Status",     "Candidates",
+              "Active",    "Iterations",   "Time (s)",   "ms/iteration",
+              "Peak (MB)", "Propor. (MB)", "kB/unknown", "Against reference"};
   for (const ScalePoint& p : study.points) {
     const bool iterative = p.solver != "fem";
     const double unknowns = static_cast<double>(p.unknowns);
@@ -39,6 +40,7 @@ Table scale_table(const ScaleStudy& study) {
         {std::to_string(p.fibres), series_name(p), p.status, std::to_string(p.candidates),
          std::to_string(p.active), std::to_string(p.iterations), seconds(p.time_s),
          iterative ? sci(p.ms_per_iteration()) : "–", fixed3(p.peak_memory_mb),
+         p.peak_proportional_memory_mb > 0.0 ? fixed3(p.peak_proportional_memory_mb) : "–",
          // The reference's peak over all its processes, per finite-element unknown.
          unknowns > 0.0 ? fixed3(1024.0 * p.peak_memory_mb * p.processes / unknowns) : "–",
          p.agreement >= 0.0 ? sci(p.agreement) : "–"});
@@ -57,6 +59,40 @@ std::string exponents_sentence(const ScaleStudy& study) {
     exponents += (exponents.empty() ? "" : "; ") + line.str();
   }
   return exponents.empty() ? "" : " Time grows as fibres^a with a: " + exponents + ".";
+}
+
+/// Whether Siconos ran at this size, on the problem the reference's run on the most processes
+/// exported (forming the whole W to do so).
+bool exported(const ScaleStudy& study, int fibres) {
+  return std::any_of(study.points.begin(), study.points.end(), [&](const ScalePoint& p) {
+    return p.solver == "siconos" && p.fibres == fibres;
+  });
+}
+
+/// "Two processes of the reference hold … of one process's peak": for every size the reference
+/// ran on one process and on more, resident and proportional; empty without such a pair.
+std::string processes_sentence(const ScaleStudy& study) {
+  std::ostringstream out;
+  out.precision(2);
+  out << std::fixed;
+  int pairs = 0;
+  for (const ScalePoint& one : study.points) {
+    if (one.solver != "fem" || one.processes != 1 || one.status != "converged") continue;
+    for (const ScalePoint& many : study.points) {
+      if (many.solver != "fem" || many.fibres != one.fibres || many.processes < 2 ||
+          many.status != "converged" || !(one.peak_memory_mb > 0.0))
+        continue;
+      out << (pairs++ == 0 ? "" : "; ") << one.fibres << " fibres, " << many.processes
+          << " processes: " << many.peak_memory_mb / one.peak_memory_mb;
+      if (one.peak_proportional_memory_mb > 0.0 && many.peak_proportional_memory_mb > 0.0)
+        out << " / " << many.peak_proportional_memory_mb / one.peak_proportional_memory_mb;
+      if (exported(study, one.fibres)) out << " (exporting its problem for Siconos)";
+    }
+  }
+  if (pairs == 0) return "";
+  return " The reference's peak per process on several processes over that on one, resident / "
+         "proportional: " +
+         out.str() + ".";
 }
 
 /// A measure of the converged runs against fibres (log-log), one series per solver and method.
@@ -127,25 +163,35 @@ void write_scale_section(ReportPage& page, const std::vector<ScaleStudy>& studie
       "iterative solver's rules, the reference under mpiexec and Siconos on the reference's "
       "exported contact problem (Lemke's pivoting, projected Gauss-Seidel and a Newton method on "
       "the linear complementarity problem). Time is the solver's own (without start-up and "
-      "files); peak memory is the process's resident memory (the largest process's under "
-      "mpiexec; the program links the finite-element libraries, about 150 MB of it, which every "
-      "process counts and the machine holds once). For the reference the iterations are its "
+      "files). Peak memory is the process's (the largest process's under mpiexec), resident and "
+      "proportional: the program maps the finite-element libraries, about 150 MB, which every "
+      "process's resident memory counts in full and the machine holds once; the proportional set "
+      "size counts each shared page as the share of each process that maps it (sampled every "
+      "tenth of a second), so that the processes' figures add up to what the machine holds. For "
+      "the reference the iterations are its "
       "outer iterations; its active-set passes are in its result files. The reference run that "
       "exports its contact problem for Siconos (on the most processes) forms the whole compliance "
       "matrix W on every process to do so; without that, each process holds only its own "
       "fibres' influence matrices and W is never formed.");
   for (const ScaleStudy& study : studies) {
     Table t = scale_table(study);
-    t.caption += exponents_sentence(study);
+    t.caption += exponents_sentence(study) + processes_sentence(study);
     page.table(t);
     against_fibres_figure(page, study, "scale_time",
                           "Solver time against the number of fibres (log-log), converged runs "
                           "only (exponents in [#tab:scale]'s caption).",
                           "time (s)", &ScalePoint::time_s);
-    against_fibres_figure(page, study, "scale_memory",
-                          "Peak memory against the number of fibres (log-log), converged runs "
-                          "only: the process's (the largest process's under mpiexec).",
-                          "peak memory (MB)", &ScalePoint::peak_memory_mb);
+    against_fibres_figure(
+        page, study, "scale_memory",
+        "Peak memory against the number of fibres (log-log), converged runs "
+        "only: the process's resident memory (the largest process's under mpiexec).",
+        "peak memory (MB)", &ScalePoint::peak_memory_mb);
+    against_fibres_figure(page, study, "scale_proportional_memory",
+                          "Peak proportional memory against the number of fibres (log-log), "
+                          "converged runs only: the pages the process shares with others (the "
+                          "libraries' code) counted as its share.",
+                          "peak proportional memory (MB)",
+                          &ScalePoint::peak_proportional_memory_mb);
   }
   if (auto finding = scale_finding(studies)) page.finding(*finding);
 }

@@ -8,7 +8,9 @@ namespace fibrecheck {
 
 /// Runs a program as a child process and waits for it: its exit code, wall time, peak resident
 /// memory (wait4's ru_maxrss: the largest of the child and the processes it waited for, so under
-/// mpiexec the largest rank) and the last lines of its standard error. Its standard output is
+/// mpiexec the largest rank), the largest peak proportional set size of the child and the
+/// processes descended from it (sampled every tenth of a second) and the last lines of its
+/// standard error. Its standard output is
 /// discarded. Open MPI's permission to run as root is passed on when this process is root.
 ProgramRun run_program(const std::vector<std::string>& arguments);
 

@@ -95,6 +95,7 @@ ScalePoint peer_point(const json& answers, const json& a, const ProgramRun& r) {
   p.time_s = a.value("time_s", 0.0);
   p.process_time_s = r.wall_time_s;
   p.peak_memory_mb = r.peak_memory_mb;
+  p.peak_proportional_memory_mb = r.peak_proportional_memory_mb;
   p.candidates = answers.value("contacts", 0L);
   // Frictionless (one unknown per contact): the pushing contacts of its answer.
   if (answers.value("unknowns", 0L) == p.candidates) {
@@ -238,6 +239,7 @@ class ScaleRuns {
     const ProgramRun r = run_(command);
     p.process_time_s = r.wall_time_s;
     p.peak_memory_mb = r.peak_memory_mb;
+    p.peak_proportional_memory_mb = r.peak_proportional_memory_mb;
     if ((r.exit_code == 0 || r.exit_code == 3) && fs::exists(out))
       take_result(p, out);
     else
@@ -300,11 +302,12 @@ void write_scale_study(const ScaleStudy& study, const std::string& folder) {
                     std::to_string(p.processes), p.status, std::to_string(p.candidates),
                     std::to_string(p.active), std::to_string(p.iterations), text(p.time_s),
                     text(p.ms_per_iteration()), text(p.peak_memory_mb), std::to_string(p.unknowns),
-                    text(p.process_time_s), text(p.agreement)});
+                    text(p.process_time_s), text(p.agreement),
+                    text(p.peak_proportional_memory_mb)});
   write_csv((fs::path(folder) / "scale.csv").string(),
             {"fibres", "slices", "solver", "method", "processes", "status", "candidates", "active",
              "iterations", "time_s", "ms_per_iteration", "peak_memory_mb", "unknowns",
-             "process_time_s", "agreement"},
+             "process_time_s", "agreement", "peak_proportional_memory_mb"},
             rows);
   write_file_atomically((fs::path(folder) / "scale_study.json").string(),
                         to_json(study).dump(1) + "\n");

@@ -22,12 +22,15 @@
 
 namespace fibrecheck {
 
-/// What a finished program run tells: its exit code, wall time and peak resident memory (of the
-/// process, or of the largest of its processes under mpiexec).
+/// What a finished program run tells: its exit code, wall time and peak memory (of the process, or
+/// of the largest of its processes under mpiexec), resident and proportional.
 struct ProgramRun {
   int exit_code = -1;
   double wall_time_s = 0.0;
   double peak_memory_mb = 0.0;
+  /// The proportional set size: each page shared with other processes (the libraries' code)
+  /// counted as its share, so that the processes' figures add up to what the machine holds.
+  double peak_proportional_memory_mb = 0.0;
   std::string error;  ///< standard error's last lines, when it failed
 };
 /// Runs a program (arguments[0] its path) to its end.

@@ -21,6 +21,7 @@ json to_json(const ScalePoint& p) {
           {"process_time_s", p.process_time_s},
           {"ms_per_iteration", p.ms_per_iteration()},
           {"peak_memory_mb", p.peak_memory_mb},
+          {"peak_proportional_memory_mb", p.peak_proportional_memory_mb},
           {"agreement", p.agreement}};
 }
 
@@ -38,6 +39,7 @@ void from_json(const json& j, ScalePoint& p) {
   p.time_s = j.at("time_s");
   p.process_time_s = j.at("process_time_s");
   p.peak_memory_mb = j.at("peak_memory_mb");
+  p.peak_proportional_memory_mb = j.value("peak_proportional_memory_mb", 0.0);
   p.agreement = j.at("agreement");
 }
 

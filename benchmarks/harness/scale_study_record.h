@@ -18,9 +18,10 @@ struct ScalePoint {
   int processes = 1;
   std::string status;
   long candidates = 0, active = 0, iterations = 0, unknowns = 0;
-  double time_s = 0.0;          ///< the solver's own time (without start-up and files)
-  double process_time_s = 0.0;  ///< the whole process
-  double peak_memory_mb = 0.0;
+  double time_s = 0.0;                       ///< the solver's own time (without start-up and files)
+  double process_time_s = 0.0;               ///< the whole process
+  double peak_memory_mb = 0.0;               ///< resident (the largest process's)
+  double peak_proportional_memory_mb = 0.0;  ///< shared pages counted as shares; 0: not measured
   double agreement = -1.0;  ///< peer: against the reference (relative), −1 when not compared
   double ms_per_iteration() const { return iterations > 0 ? 1e3 * time_s / iterations : 0.0; }
 };

@@ -293,6 +293,9 @@ TEST_F(Cli, ScaleStudyMeasuresEveryRunAndResumes) {
     EXPECT_GT(p["active"].get<long>(), 0);
     EXPECT_LE(p["active"].get<long>(), p["candidates"].get<long>());
     EXPECT_GT(p["peak_memory_mb"].get<double>(), 1.0);
+    EXPECT_GT(p["peak_proportional_memory_mb"].get<double>(), 0.0);
+    EXPECT_LE(p["peak_proportional_memory_mb"].get<double>(),
+              p["peak_memory_mb"].get<double>() + 1.0);
     if (p["solver"] == "iterative") {
       ++iterative;
       EXPECT_GT(p["iterations"].get<long>(), 0);

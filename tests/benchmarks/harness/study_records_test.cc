@@ -159,7 +159,8 @@ TEST(StudyRecords, TheScaleStudyKeepsItsFieldNames) {
   EXPECT_EQ(keys(j["points"][0]),
             (Keys{"fibres", "slices", "solver", "method", "processes", "status", "candidates",
                   "active", "iterations", "unknowns", "time_s", "process_time_s",
-                  "ms_per_iteration", "peak_memory_mb", "agreement"}));
+                  "ms_per_iteration", "peak_memory_mb", "peak_proportional_memory_mb",
+                  "agreement"}));
   EXPECT_EQ(keys(j["exponents"][0]),
             (Keys{"solver", "method", "processes", "sizes", "time", "memory"}));
   const ScaleStudy back = j.get<ScaleStudy>();
