@@ -20,6 +20,8 @@ class ContactCompliance {
   /// that fails or the answer is not finite.
   virtual bool solve_on_subset(const std::vector<Eigen::Index>& index, const Eigen::VectorXd& b,
                                Eigen::VectorXd& x) const = 0;
+  /// W_SS for the rows and columns `index`, in their order.
+  virtual Eigen::SparseMatrix<double> on_subset(const std::vector<Eigen::Index>& index) const = 0;
 };
 
 /// W held as a sparse matrix, assembled from the fibres' influence matrices.
@@ -29,6 +31,7 @@ class AssembledCompliance : public ContactCompliance {
   Eigen::VectorXd times(const Eigen::VectorXd& x) const override;
   bool solve_on_subset(const std::vector<Eigen::Index>& index, const Eigen::VectorXd& b,
                        Eigen::VectorXd& x) const override;
+  Eigen::SparseMatrix<double> on_subset(const std::vector<Eigen::Index>& index) const override;
 
  private:
   const Eigen::SparseMatrix<double>& W_;

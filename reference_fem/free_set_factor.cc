@@ -91,6 +91,21 @@ class FreeSetFactor::Factor {
     return smallest == INFINITY || smallest > 1e-14 * largest;
   }
 
+  /// The smallest pivot of F over the largest (a rough reciprocal condition of W_FF).
+  double pivot_ratio() const {
+    if (!valid_ || !L_) return 1.0;
+    const int* p = static_cast<const int*>(L_->p);
+    const double* x = static_cast<const double*>(L_->x);
+    double smallest = INFINITY, largest = 0.0;
+    for (std::size_t j = 0; j < factored_.size(); ++j) {
+      if (!factored_[j]) continue;
+      const double d = std::fabs(x[p[position_[j]]]);
+      smallest = std::min(smallest, d);
+      largest = std::max(largest, d);
+    }
+    return largest > 0.0 ? smallest / largest : 1.0;
+  }
+
   bool solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
     cholmod_dense B{};
     B.nrow = static_cast<std::size_t>(b.size());
@@ -252,6 +267,10 @@ bool FreeSetFactor::solve(const std::vector<char>& free, const Eigen::VectorXd& 
   if (!regularised_) regularised_ = std::make_unique<Factor>(W_, epsilon_);
   return regularised_->bring_to(free, false, factorisations_, modifications_) &&
          solve_with(*regularised_, free, masked, x, judged);
+}
+
+double FreeSetFactor::pivot_ratio() const {
+  return last_shift_ > 0.0 && regularised_ ? regularised_->pivot_ratio() : exact_->pivot_ratio();
 }
 
 bool FreeSetFactor::answers(const std::vector<char>& free, const Eigen::VectorXd& b,

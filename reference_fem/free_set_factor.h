@@ -36,6 +36,9 @@ class FreeSetFactor {
   bool answers(const std::vector<char>& free, const Eigen::VectorXd& b,
                const Eigen::VectorXd& x) const;
 
+  /// The smallest pivot of the last answer's factor over its largest, on F: about the reciprocal
+  /// of W_FF's condition number.
+  double pivot_ratio() const;
   const Eigen::SparseMatrix<double>& matrix() const { return W_; }
   int factorisations() const { return factorisations_; }
   int modifications() const { return modifications_; }

@@ -45,57 +45,56 @@ std::vector<Eigen::Triplet<double>> gathered(const std::vector<int>& rows,
 
 }  // namespace
 
-InfluenceCompliance::InfluenceCompliance(std::vector<Fibre> fibres, Eigen::Index contacts,
+InfluenceCompliance::InfluenceCompliance(std::vector<Fibre> fibres, Eigen::Index rows,
                                          MPI_Comm communicator)
-    : fibres_(std::move(fibres)), contacts_(contacts), comm_(communicator) {
-  first_.assign(static_cast<std::size_t>(contacts_) + 1, 0);
+    : fibres_(std::move(fibres)), rows_(rows), comm_(communicator) {
+  first_.assign(static_cast<std::size_t>(rows_) + 1, 0);
   for (const Fibre& f : fibres_)
-    for (const Side& side : f.sides) ++first_[static_cast<std::size_t>(side.contact) + 1];
+    for (const Side& side : f.sides) ++first_[static_cast<std::size_t>(side.row) + 1];
   std::partial_sum(first_.begin(), first_.end(), first_.begin());
   held_.resize(first_.back());
   std::vector<std::size_t> next(first_.begin(), first_.end() - 1);
   for (std::size_t f = 0; f < fibres_.size(); ++f)
     for (std::size_t i = 0; i < fibres_[f].sides.size(); ++i)
-      held_[next[static_cast<std::size_t>(fibres_[f].sides[i].contact)]++] = {static_cast<int>(f),
-                                                                              static_cast<int>(i)};
+      held_[next[static_cast<std::size_t>(fibres_[f].sides[i].row)]++] = {static_cast<int>(f),
+                                                                          static_cast<int>(i)};
 }
 
 // Per fibre: the forces x puts on its stations (few: x is mostly zero), then the displacement
 // across the fibre they give at each side's station, along its φ.
 Eigen::VectorXd InfluenceCompliance::times(const Eigen::VectorXd& x) const {
-  std::vector<double> y(static_cast<std::size_t>(contacts_), 0.0);
+  std::vector<double> y(static_cast<std::size_t>(rows_), 0.0);
   std::vector<std::pair<int, Eigen::Vector3d>> loaded;
   for (const Fibre& f : fibres_) {
     loaded.clear();
     for (const Side& side : f.sides)
-      if (x[side.contact] != 0.0)
-        loaded.emplace_back(side.station, x[side.contact] * side.direction);
+      if (x[side.row] != 0.0) loaded.emplace_back(side.station, x[side.row] * side.direction);
     if (loaded.empty()) continue;
     for (const Side& side : f.sides) {
       const double* column = f.G + static_cast<std::ptrdiff_t>(side.station) * f.stations;
       Eigen::Vector3d u = Eigen::Vector3d::Zero();
       for (const auto& [station, force] : loaded) u += column[station] * force;
-      y[static_cast<std::size_t>(side.contact)] += side.direction.dot(u);
+      y[static_cast<std::size_t>(side.row)] += side.direction.dot(u);
     }
   }
   return summed_over_processes(y, comm_);
 }
 
 Eigen::VectorXd InfluenceCompliance::diagonal() const {
-  std::vector<double> d(static_cast<std::size_t>(contacts_), 0.0);
+  std::vector<double> d(static_cast<std::size_t>(rows_), 0.0);
   for (const Fibre& f : fibres_)
     for (const Side& side : f.sides)
-      d[static_cast<std::size_t>(side.contact)] +=
+      d[static_cast<std::size_t>(side.row)] +=
           f.G[static_cast<std::ptrdiff_t>(side.station) * (f.stations + 1)] *
           side.direction.squaredNorm();
   return summed_over_processes(d, comm_);
 }
 
 // The set's entries of this process's fibres, in the set's numbering (found from the set's own
-// contacts, fibre by fibre), then those of every process in the order of the processes: every
-// process sums the same entries alike into the same W_SS.
-bool InfluenceCompliance::solve_on_subset(const std::vector<Eigen::Index>& index,
-                                          const Eigen::VectorXd& b, Eigen::VectorXd& x) const {
+// rows, fibre by fibre), then those of every process in the order of the processes: every process
+// sums the same entries alike into the same W_SS.
+Eigen::SparseMatrix<double> InfluenceCompliance::on_subset(
+    const std::vector<Eigen::Index>& index) const {
   const int m = static_cast<int>(index.size());
   struct InSet {
     int fibre, side, position;
@@ -128,9 +127,14 @@ bool InfluenceCompliance::solve_on_subset(const std::vector<Eigen::Index>& index
   const std::vector<Eigen::Triplet<double>> entries = gathered(rows, columns, values, comm_);
   Eigen::SparseMatrix<double> Wss(m, m);
   Wss.setFromTriplets(entries.begin(), entries.end());
-  std::vector<Eigen::Index> every(static_cast<std::size_t>(m));
+  return Wss;
+}
+
+bool InfluenceCompliance::solve_on_subset(const std::vector<Eigen::Index>& index,
+                                          const Eigen::VectorXd& b, Eigen::VectorXd& x) const {
+  std::vector<Eigen::Index> every(index.size());
   std::iota(every.begin(), every.end(), Eigen::Index(0));
-  return fibrecheck::solve_on_subset(Wss, every, b, x);
+  return fibrecheck::solve_on_subset(on_subset(index), every, b, x);
 }
 
 }  // namespace fibrecheck

@@ -3,13 +3,15 @@
 #include <mpi.h>
 
 #include <Eigen/Core>
+#include <Eigen/SparseCore>
 #include <vector>
 
 #include "contact_compliance.h"
 
 namespace fibrecheck {
 
-/// W applied through the fibres' influence matrices, never formed. W_jk = Σ_f G_f(s_j, s_k) φ_j·φ_k
+/// W applied through the fibres' influence matrices, never formed (its rows a contact each, or with
+/// friction one per component of a contact's reaction). W_jk = Σ_f G_f(s_j, s_k) φ_j·φ_k
 /// over the fibres f both contacts act on, with G_f fibre f's influence matrix in its contact
 /// stations and φ the part across the fibre of the force a unit reaction puts on it there. W would
 /// hold (contacts on a fibre)² entries per fibre, G_f only (stations on it)²: on a compacted tow
@@ -24,9 +26,10 @@ namespace fibrecheck {
 /// same arguments; the answers are the same bits on every process.
 class InfluenceCompliance : public ContactCompliance {
  public:
-  /// One side of a contact on a fibre: its station there and φ.
+  /// One side of a row of W on a fibre (a contact's, or with friction one component of its
+  /// reaction): its station there and φ.
   struct Side {
-    Eigen::Index contact;
+    Eigen::Index row;
     int station;
     Eigen::Vector3d direction;
   };
@@ -38,11 +41,12 @@ class InfluenceCompliance : public ContactCompliance {
     std::vector<Side> sides;
   };
 
-  InfluenceCompliance(std::vector<Fibre> fibres, Eigen::Index contacts, MPI_Comm communicator);
+  InfluenceCompliance(std::vector<Fibre> fibres, Eigen::Index rows, MPI_Comm communicator);
   Eigen::VectorXd times(const Eigen::VectorXd& x) const override;
   bool solve_on_subset(const std::vector<Eigen::Index>& index, const Eigen::VectorXd& b,
                        Eigen::VectorXd& x) const override;
-  /// W_kk of every contact.
+  Eigen::SparseMatrix<double> on_subset(const std::vector<Eigen::Index>& index) const override;
+  /// W_kk of every row.
   Eigen::VectorXd diagonal() const;
 
  private:
@@ -51,9 +55,9 @@ class InfluenceCompliance : public ContactCompliance {
     int fibre, side;
   };
   std::vector<Fibre> fibres_;
-  Eigen::Index contacts_;
+  Eigen::Index rows_;
   MPI_Comm comm_;
-  /// The sides of contact k held here: held_[first_[k]] to held_[first_[k + 1]].
+  /// The sides of row k held here: held_[first_[k]] to held_[first_[k + 1]].
   std::vector<std::size_t> first_;
   std::vector<Held> held_;
 };

@@ -191,7 +191,8 @@ Eigen::Vector3d ReferenceSolver::reaction_direction(Eigen::Index k, int i, bool 
 }
 
 // Friction: W with the tangential blocks, W_(j,a)(k,b) = Σ_f G_f(j, k) φ⊥_ja·φ⊥_kb, and q the
-// overlaps d0 and the slips under the scene's loads alone (measured from the step's start).
+// overlaps d0 and the slips under the scene's loads alone (measured from the step's start);
+// shared, W applied through this process's fibres' influence matrices like the frictionless one.
 void ReferenceSolver::assemble_frictional_problem(
     const std::vector<double>& G, const std::vector<std::vector<ContactSide>>& sides,
     bool in_place) {
@@ -217,6 +218,23 @@ void ReferenceSolver::assemble_frictional_problem(
     for (int i = 1; i <= c.tangents; ++i)
       problem.q[problem.offset[k] + i] = reaction_direction(k, i, true).dot(slip);
   }
+  problem.excluded.assign(n, 0);
+  if (compliance_shared()) {
+    std::vector<InfluenceCompliance::Fibre> held;
+    for (std::size_t f = 0; f < fibres_.size(); ++f) {
+      if (!owned_[f]) continue;
+      const Eigen::Vector3d t = fibres_[f].t;
+      InfluenceCompliance::Fibre fibre{&G[g_offset_[f]], static_cast<int>(stations_[f].size()), {}};
+      for (const ContactSide& j : sides[f])
+        for (int a = 0; a <= contacts_[j.contact].tangents; ++a) {
+          const Eigen::Vector3d phi = reaction_direction(j.contact, a, j.on_a);
+          fibre.sides.push_back({problem.offset[j.contact] + a, j.station, phi - phi.dot(t) * t});
+        }
+      held.push_back(std::move(fibre));
+    }
+    frictional_influence_ = std::make_unique<InfluenceCompliance>(std::move(held), unknowns, comm_);
+    return;
+  }
   std::size_t count = 0;
   for (const auto& list : sides) count += list.size() * list.size();
   SparseSum frictional(problem.W, problem.offset[n], in_place, 4 * count);
@@ -236,7 +254,6 @@ void ReferenceSolver::assemble_frictional_problem(
       }
   }
   frictional.finish();
-  problem.excluded.assign(n, 0);
 }
 
 }  // namespace fibrecheck

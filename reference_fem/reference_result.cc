@@ -106,6 +106,16 @@ void ReferenceSolver::describe_run(Result& r, const std::vector<std::string>& am
                         ? "with --beam-solver cg_amg"
                         : "exporting its contact problem") +
         ", held the compliance matrix");
+  if (friction_settled_to_ > 0.0) {
+    std::ostringstream out;
+    out.precision(3);
+    out << "Coulomb's law was settled to " << friction_settled_to_ << " mm of slip where "
+        << friction_aimed_
+        << " mm was aimed at: the sticking contacts' equations are nearly singular (contacts that "
+           "constrain the same motion twice), and the round-off of their answers leaves the "
+           "friction determined only that far";
+    r.warnings.push_back(out.str());
+  }
   r.iterations = outer;
   r.finite_elements->active_set_iterations = active_set_iterations_;
   r.finite_elements->unknowns = static_cast<long>(

@@ -15,6 +15,7 @@
 
 #include "ambiguous_sides.h"
 #include "carry_over.h"
+#include "frictional_working_set.h"
 #include "line_force_extrapolation.h"
 #include "load_path_solve.h"
 #include "memory_reach.h"
@@ -160,6 +161,7 @@ void ReferenceSolver::make_grid() {
   collect_stations();
   saddle_.reset();
   influence_.reset();
+  frictional_influence_.reset();
   model_.reset();
   // A process with more processes than fibres may own none: it then only takes part in the sums.
   const bool owns = std::any_of(owned_.begin(), owned_.end(), [](char o) { return o != 0; });
@@ -270,9 +272,9 @@ bool ReferenceSolver::solve_frictionless(const std::vector<char>& excluded) {
   return solved.solved;
 }
 
-// solve_friction: Coulomb's law at every candidate, exactly (tresca_fixed_point.h), from the
-// frictionless answer just found (or the normal forces of the last frictional answer) and the
-// friction forces the candidates carried over.
+// solve_friction: Coulomb's law at every candidate, exactly (tresca_fixed_point.h) on a working set
+// of them (frictional_working_set.h), from the frictionless answer just found (or the normal forces
+// of the last frictional answer) and the friction forces the candidates carried over.
 void ReferenceSolver::solve_friction(const std::vector<char>& excluded, Start start) {
   FrictionalProblem& problem = friction_problem_;
   problem.excluded = excluded;
@@ -290,11 +292,18 @@ void ReferenceSolver::solve_friction(const std::vector<char>& excluded, Start st
   options.tolerance = tolerance_;
   options.slack = friction_slack_;
   options.max_active_set_passes = options_.max_active_set_iterations;
-  const TrescaSolve solved = tresca_fixed_point(problem, options, r);
+  const AssembledCompliance assembled(problem.W);
+  const ContactCompliance& W = frictional_influence_
+                                   ? static_cast<const ContactCompliance&>(*frictional_influence_)
+                                   : assembled;
+  const TrescaSolve solved = tresca_on_working_set(W, problem, options, r);
   active_set_iterations_ += solved.active_set_passes;
   newton_steps_ += solved.newton_steps;
   tresca_updates_ += solved.updates;
   newton_finishes_ += solved.finished_by_newton ? 1 : 0;
+  if (solved.settled && solved.settled_to > solved.aimed &&
+      solved.settled_to > friction_settled_to_)
+    friction_settled_to_ = solved.settled_to, friction_aimed_ = solved.aimed;
   if (!solved.settled) {
     trouble_.why = solved.trouble;
     trouble_.friction_unsettled = true;

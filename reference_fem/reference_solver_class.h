@@ -137,8 +137,9 @@ class ReferenceSolver {
     return saddle_point_possible() && options_.contact_assembly == ContactAssembly::saddle_point;
   }
   /// W is shared out over the processes by fibres and applied through their influence matrices
-  /// (influence_compliance.h), never formed. Friction and a problem handed out take the whole W.
-  bool compliance_shared() const { return mu_ == 0.0 && !options_.contact_problem; }
+  /// (influence_compliance.h), never formed; with friction too, its tangential blocks gathered on
+  /// the working set alone (frictional_working_set.h). A problem handed out takes the whole W.
+  bool compliance_shared() const { return !options_.contact_problem; }
   void make_saddle_point(const std::vector<std::vector<ContactSide>>& sides);
 
   // Deformed contact (deformed_contact.cc).
@@ -202,14 +203,20 @@ class ReferenceSolver {
   double within_reach_;  ///< bytes each process may take (memory_reach.h)
   SlipOrigins origins_, end_state_;
   std::vector<Contact> last_step_;  ///< the previous load step's final contacts, if any
-  /// The frictional problem of the candidates (μ > 0): W with the tangential blocks and q.
+  /// The frictional problem of the candidates (μ > 0): q, and W with the tangential blocks where
+  /// it is not shared.
   FrictionalProblem friction_problem_;
+  /// Or, shared, that W applied through G_.
+  std::unique_ptr<InfluenceCompliance> frictional_influence_;
   ContactProblem exported_;  ///< the problem last solved (only with options_.contact_problem)
   /// mm: how far short of its fixed point the next Tresca problem may stop (deformed contact).
   double friction_slack_ = 0.0;
   long newton_steps_ = 0;
   long tresca_updates_ = 0;
   long newton_finishes_ = 0;
+  /// mm: the largest violation of Coulomb's law a Tresca fixed point was settled to above what it
+  /// aimed at (the round-off floor of a nearly singular sticking set), and that aim; 0: none.
+  double friction_settled_to_ = 0.0, friction_aimed_ = 0.0;
 };
 
 }  // namespace fibrecheck

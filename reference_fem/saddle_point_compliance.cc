@@ -157,6 +157,23 @@ void SaddlePointCompliance::set_values(const std::vector<Eigen::Index>& index,
 // W·x: the fibres under the nodal forces of the reactions x (each process its own), then each
 // contact's overlap removed, n·(u_B − u_A) as the sides' directions read it, summed over the
 // processes.
+Eigen::SparseMatrix<double> SaddlePointCompliance::on_subset(
+    const std::vector<Eigen::Index>& index) const {
+  const Eigen::Index m = static_cast<Eigen::Index>(index.size());
+  std::vector<Eigen::Triplet<double>> entries;
+  Eigen::VectorXd unit = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(sides_.size()));
+  for (Eigen::Index j = 0; j < m; ++j) {
+    unit[index[j]] = 1.0;
+    const Eigen::VectorXd column = times(unit);
+    unit[index[j]] = 0.0;
+    for (Eigen::Index i = 0; i < m; ++i)
+      if (column[index[i]] != 0.0) entries.emplace_back(i, j, column[index[i]]);
+  }
+  Eigen::SparseMatrix<double> Wss(m, m);
+  Wss.setFromTriplets(entries.begin(), entries.end());
+  return Wss;
+}
+
 Eigen::VectorXd SaddlePointCompliance::times(const Eigen::VectorXd& x) const {
   const Eigen::Index n = x.size();
   std::vector<double> y(static_cast<std::size_t>(n), 0.0);

@@ -52,6 +52,8 @@ class SaddlePointCompliance : public ContactCompliance {
   Eigen::VectorXd times(const Eigen::VectorXd& x) const override;
   bool solve_on_subset(const std::vector<Eigen::Index>& index, const Eigen::VectorXd& b,
                        Eigen::VectorXd& x) const override;
+  /// A product W·e_k, a finite-element solve, per column: for sets of a few hundred.
+  Eigen::SparseMatrix<double> on_subset(const std::vector<Eigen::Index>& index) const override;
 
   /// Per contact: every side of it lies where a support pins the fibre, so no force moves it.
   std::vector<char> immovable() const;

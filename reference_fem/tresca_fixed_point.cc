@@ -3,6 +3,8 @@
 #include <Eigen/SparseCore>
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <memory>
 #include <sstream>
 #include <vector>
 
@@ -23,6 +25,23 @@ double settled_slip(const FrictionalProblem& problem, const TrescaOptions& optio
     for (Eigen::Index i = problem.offset[k] + 1; i < problem.offset[k + 1]; ++i)
       slip_scale = std::max(slip_scale, std::fabs(problem.q[i]));
   return std::max({options.threshold, 1e-9 * slip_scale, 1e-3 * options.tolerance, options.slack});
+}
+
+/// The violation the radii can be settled to at all (mm). An inner answer's normal forces are
+/// determined only to cond(W_FF)·ε of the largest (the pivot ratio of its factor, about
+/// 1/cond(W_FF)), and a radius error μ·δP moves a slip by the contact's tangential compliance
+/// times that. Where the free set is nearly singular (contacts that constrain the same motion
+/// twice, solved regularised) this lies far above the round-off of the slips, and each Tresca
+/// problem shares the force among those contacts differently below it.
+double round_off_floor(const FrictionalProblem& problem, const std::vector<double>& compliance,
+                       const Eigen::VectorXd& r, double pivot_ratio) {
+  const Eigen::Index n = static_cast<Eigen::Index>(problem.offset.size()) - 1;
+  double force = 0.0, slip_per_force = 0.0;
+  for (Eigen::Index k = 0; k < n; ++k) {
+    force = std::max(force, r[problem.offset[k]]);
+    slip_per_force = std::max(slip_per_force, compliance[k]);
+  }
+  return problem.mu * std::numeric_limits<double>::epsilon() / pivot_ratio * force * slip_per_force;
 }
 
 /// Each contact's tangential compliance (mm/N, the slip per unit of friction: the largest
@@ -120,41 +139,56 @@ std::string unsettled_message(const FrictionalProblem& problem, const TrescaOpti
   return out.str();
 }
 
-/// Newton's method on Coulomb's law itself (solve_frictional without radii) from `r`: true when it
-/// settles to `settled` (mm), the answer in `r`; otherwise `r` and the radii stay as they were.
-/// `residual` is what it left (mm).
+/// Newton's method on Coulomb's law itself (solve_frictional without radii) from `start`: true
+/// when it settles to `settled` (mm), the answer in `r`; otherwise `r` and the radii stay as they
+/// were. `residual` is what it left (mm).
 bool finish_by_newton(FrictionalProblem& problem, const TrescaOptions& options, double settled,
-                      TrescaSolve& result, Eigen::VectorXd& r, double& residual) {
-  const Eigen::VectorXd radii = problem.bounds, start = r;
+                      const Eigen::VectorXd& start, TrescaSolve& result, Eigen::VectorXd& r,
+                      double& residual) {
+  const Eigen::VectorXd radii = problem.bounds;
+  Eigen::VectorXd answer = start;
   problem.bounds.resize(0);
-  const FrictionalSolve coulomb = solve_frictional(problem, settled, options.max_newton_steps, r);
+  const FrictionalSolve coulomb =
+      solve_frictional(problem, settled, options.max_newton_steps, answer);
   problem.bounds = radii;
   result.newton_steps += coulomb.newton_steps;
   residual = coulomb.residual;
   result.finished_by_newton = coulomb.settled;
-  if (!coulomb.settled) r = start;
+  if (coulomb.settled) r = answer;
   return coulomb.settled;
 }
 
 }  // namespace
 
 TrescaSolve tresca_fixed_point(FrictionalProblem& problem, const TrescaOptions& options,
-                               Eigen::VectorXd& r) {
+                               Eigen::VectorXd& r, const GrowProblem& grow) {
   TrescaSolve result;
-  const Eigen::Index n = static_cast<Eigen::Index>(problem.offset.size()) - 1;
-  problem.bounds.resize(n);
-  for (Eigen::Index k = 0; k < n; ++k)
-    problem.bounds[k] = problem.mu * std::max(r[problem.offset[k]], 0.0);
-  const double settled = settled_slip(problem, options);
+  problem.bounds.resize(0);
+  result.aimed = settled_slip(problem, options);
+  double settled = result.aimed;
   bool one_tangent = true;
-  for (Eigen::Index k = 0; k < n; ++k)
-    one_tangent &= problem.offset[k + 1] - problem.offset[k] <= 2;
   std::vector<double> compliance;
   std::vector<char> movable;
-  tangential_compliances(problem, compliance, movable);
-  FreeSetFactor factor(problem.W);
+  std::unique_ptr<FreeSetFactor> free_set;
+  // What follows the problem's contacts: their radii (μP for those that join), the tangential
+  // compliances and the free set's factor.
+  const auto take_contacts = [&] {
+    const Eigen::Index before = problem.bounds.size();
+    const Eigen::Index n = static_cast<Eigen::Index>(problem.offset.size()) - 1;
+    problem.bounds.conservativeResize(n);
+    for (Eigen::Index k = before; k < n; ++k) {
+      problem.bounds[k] = problem.mu * std::max(r[problem.offset[k]], 0.0);
+      one_tangent &= problem.offset[k + 1] - problem.offset[k] <= 2;
+    }
+    tangential_compliances(problem, compliance, movable);
+    free_set = std::make_unique<FreeSetFactor>(problem.W);
+  };
+  take_contacts();
   FrictionalSolve inner;
   Relaxation relaxation;
+  // Newton's method starts from the answer of the smallest violation so far (on a stalled fixed
+  // point the last answer may be far from it).
+  Eigen::VectorXd best;
   double change = INFINITY, lowest = INFINITY, coulomb_residual = INFINITY;
   int updates = 0, lowest_at = 0;
   bool newton_tried = false, exact_radii = false;
@@ -162,9 +196,11 @@ TrescaSolve tresca_fixed_point(FrictionalProblem& problem, const TrescaOptions& 
     if (one_tangent) {
       Eigen::VectorXd lo, hi;
       tresca_box(problem, movable, lo, hi);
-      const BoundedSolve box = bounded_active_set(factor, problem.q, lo, hi, options.threshold,
+      const BoundedSolve box = bounded_active_set(*free_set, problem.q, lo, hi, options.threshold,
                                                   options.max_active_set_passes, r);
       result.active_set_passes += box.passes;
+      settled =
+          std::max(result.aimed, round_off_floor(problem, compliance, r, free_set->pivot_ratio()));
       inner.settled = box.solved;
       inner.newton_steps = 0;
       inner.residual = box.solved ? 0.0 : INFINITY;
@@ -173,6 +209,11 @@ TrescaSolve tresca_fixed_point(FrictionalProblem& problem, const TrescaOptions& 
       result.newton_steps += inner.newton_steps;
     }
     if (!inner.settled) break;
+    if (grow && grow(problem, r)) {
+      lowest = INFINITY, lowest_at = updates;
+      take_contacts();
+      continue;
+    }
     // Settled with relaxed radii, the fixed point takes one more inner problem and puts the radii
     // on μP exactly (as the plain update does): a relaxed radius leaves a contact that slips a
     // hair inside its disk (counted as sticking, with all its slip) or outside the cone.
@@ -183,19 +224,26 @@ TrescaSolve tresca_fixed_point(FrictionalProblem& problem, const TrescaOptions& 
     const double factor = relaxation.factor;
     change = update_radii(problem, compliance, factor, r);
     relaxation.adapt(change);
-    if (change <= settled && factor == 1.0) break;
+    if (change <= settled && factor == 1.0) {
+      result.settled_to = settled;
+      break;
+    }
     exact_radii = change <= settled;
-    if (change < lowest) lowest = change, lowest_at = updates;
+    if (exact_radii) result.settled_to = settled;
+    if (change < lowest) lowest = change, lowest_at = updates, best = r;
     if (!newton_tried && updates - lowest_at >= options.stall_updates) {
       newton_tried = true;
-      if (finish_by_newton(problem, options, settled, result, r, coulomb_residual)) break;
+      if (finish_by_newton(problem, options, settled, best, result, r, coulomb_residual)) break;
     }
   }
   result.updates = std::min(updates, options.max_updates);
-  if (inner.settled && change > settled && !result.finished_by_newton)
-    finish_by_newton(problem, options, settled, result, r, coulomb_residual);
+  // Judged by the floor the stop was decided on (the last inner answer's may lie lower).
+  result.settled_to = std::max(result.settled_to, settled);
+  if (inner.settled && change > result.settled_to && !result.finished_by_newton)
+    finish_by_newton(problem, options, result.settled_to, best.size() == r.size() ? best : r,
+                     result, r, coulomb_residual);
   if (result.finished_by_newton) change = coulomb_residual;
-  result.settled = inner.settled && !(change > settled);
+  result.settled = inner.settled && !(change > result.settled_to);
   if (!result.settled)
     result.trouble = unsettled_message(problem, options, one_tangent, inner, result.updates, change,
                                        coulomb_residual);

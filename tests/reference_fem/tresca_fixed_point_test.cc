@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Sparse>
+#include <cmath>
 
 namespace fibrecheck {
 namespace {
@@ -58,6 +59,43 @@ TEST(TrescaFixedPoint, ItsOwnUpdatesSettleWhereTheyHaveTheTime) {
   EXPECT_GT(solved.updates, 100);
   EXPECT_NEAR(r[0], 20.0, 1e-6);
   EXPECT_NEAR(r[1], 10.0, 1e-6);
+}
+
+}  // namespace
+}  // namespace fibrecheck
+
+namespace fibrecheck {
+namespace {
+
+// One contact entered twice, as two contacts that constrain the same motion (a singular W, solved
+// regularised): only the sums are determined, P1 + P2 = 1 and, slipping (slip 10 − (F1 + F2) > 0),
+// F1 + F2 = μ(P1 + P2) = 0.5. The radii settle to the floor the regularised solves leave, which
+// the answer reports, above the 1e-12 mm aimed at, and each contact keeps its friction in its
+// disk.
+TEST(TrescaFixedPoint, ASingularStickingSetSettlesToItsRoundOffFloorAndSaysSo) {
+  FrictionalProblem problem;
+  Eigen::Matrix4d W;
+  W << 1, 0, 1, 0,  //
+      0, 1, 0, 1,  //
+      1, 0, 1, 0,  //
+      0, 1, 0, 1;
+  problem.W = W.sparseView();
+  problem.q = Eigen::Vector4d(1.0, 10.0, 1.0, 10.0);
+  problem.offset = {0, 2, 4};
+  problem.mu = 0.5;
+  problem.excluded = {0, 0};
+  TrescaOptions options;
+  options.threshold = 1e-12;
+  options.tolerance = 1e-9;
+  Eigen::VectorXd r = Eigen::Vector4d(0.5, 0.0, 0.5, 0.0);
+  const TrescaSolve solved = tresca_fixed_point(problem, options, r);
+  ASSERT_TRUE(solved.settled) << solved.trouble;
+  EXPECT_NEAR(r[0] + r[2], 1.0, 1e-6);
+  EXPECT_NEAR(r[1] + r[3], 0.5, 1e-6);
+  EXPECT_LE(std::fabs(r[1]), problem.mu * r[0] + 1e-6);
+  EXPECT_LE(std::fabs(r[3]), problem.mu * r[2] + 1e-6);
+  EXPECT_GT(solved.settled_to, solved.aimed);
+  EXPECT_LE(solved.settled_to, 1e-5);
 }
 
 }  // namespace
