@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 namespace fibrecheck {
 
@@ -78,32 +79,15 @@ class FreeSetFactor::Factor {
 
   /// Every pivot of F positive and none below 1e-14 of the largest (subset_solve.h).
   bool pivots_sound() const {
-    const int* p = static_cast<const int*>(L_->p);
-    const double* x = static_cast<const double*>(L_->x);
-    double smallest = INFINITY, largest = 0.0;
-    for (std::size_t j = 0; j < factored_.size(); ++j) {
-      if (!factored_[j]) continue;
-      const double d = x[p[position_[j]]];
-      if (!std::isfinite(d)) return false;
-      smallest = std::min(smallest, d);
-      largest = std::max(largest, d);
-    }
-    return smallest == INFINITY || smallest > 1e-14 * largest;
+    const auto [smallest, largest] = pivot_extremes();
+    return !std::isnan(smallest) && (smallest == INFINITY || smallest > 1e-14 * largest);
   }
 
   /// The smallest pivot of F over the largest (a rough reciprocal condition of W_FF).
   double pivot_ratio() const {
     if (!valid_ || !L_) return 1.0;
-    const int* p = static_cast<const int*>(L_->p);
-    const double* x = static_cast<const double*>(L_->x);
-    double smallest = INFINITY, largest = 0.0;
-    for (std::size_t j = 0; j < factored_.size(); ++j) {
-      if (!factored_[j]) continue;
-      const double d = std::fabs(x[p[position_[j]]]);
-      smallest = std::min(smallest, d);
-      largest = std::max(largest, d);
-    }
-    return largest > 0.0 ? smallest / largest : 1.0;
+    const auto [smallest, largest] = pivot_extremes();
+    return largest > 0.0 && std::isfinite(smallest) ? std::fabs(smallest) / largest : 1.0;
   }
 
   bool solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
@@ -204,6 +188,21 @@ class FreeSetFactor::Factor {
         return valid_ = false;
     }
     return valid_;
+  }
+
+  /// The smallest and largest pivot of F (NaN for the smallest where one is not finite).
+  std::pair<double, double> pivot_extremes() const {
+    const int* p = static_cast<const int*>(L_->p);
+    const double* x = static_cast<const double*>(L_->x);
+    double smallest = INFINITY, largest = 0.0;
+    for (std::size_t j = 0; j < factored_.size(); ++j) {
+      if (!factored_[j]) continue;
+      const double d = x[p[position_[j]]];
+      if (!std::isfinite(d)) return {NAN, largest};
+      smallest = std::min(smallest, d);
+      largest = std::max(largest, d);
+    }
+    return {smallest, largest};
   }
 
   const Eigen::SparseMatrix<double>& W_;
