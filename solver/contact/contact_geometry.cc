@@ -89,8 +89,14 @@ double ContactGeometry::overlap(const Contact& c, const Eigen::Vector3d& u_a,
   if (!deformed() || c.kind == ContactKind::wall) return overlap_along_normal(c, u_a, u_b);
   const double radii = fibres_[c.a].radius + fibres_[c.b].radius;
   const double distance = centre_difference(c, u_a, u_b).norm();
-  if (distance < 0.5 * radii) return overlap_along_normal(c, u_a, u_b);
+  if (distance < 0.5 * radii || passed_through(c, u_a, u_b))
+    return overlap_along_normal(c, u_a, u_b);
   return radii - distance;
+}
+
+bool ContactGeometry::passed_through(const Contact& c, const Eigen::Vector3d& u_a,
+                                     const Eigen::Vector3d& u_b) const {
+  return c.kind != ContactKind::wall && centre_difference(c, u_a, u_b).dot(c.normal) <= 0.0;
 }
 
 double ContactGeometry::deformed_gap(const Contact& c, const Eigen::Vector3d& u_a,
@@ -115,6 +121,7 @@ void ContactGeometry::follow(Contact& c, const Eigen::Vector3d& u_a,
   const Eigen::Vector3d difference = centre_difference(c, u_a, u_b);
   const double distance = difference.norm();
   if (distance < 0.5 * (fibres_[c.a].radius + fibres_[c.b].radius)) return;
+  if (passed_through(c, u_a, u_b)) return;
   turn(c, difference / distance);
 }
 

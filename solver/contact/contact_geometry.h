@@ -55,6 +55,11 @@ class ContactGeometry {
   double overlap(const Contact& contact, const Eigen::Vector3d& u_a,
                  const Eigen::Vector3d& u_b) const;
 
+  /// Whether the displaced centres have passed through each other: B′c − A′c points against the
+  /// contact's normal. Such a contact keeps its normal, along which its overlap is measured.
+  bool passed_through(const Contact& contact, const Eigen::Vector3d& u_a,
+                      const Eigen::Vector3d& u_b) const;
+
   /// The seed's own gap of the displaced centres, ‖B′c − A′c‖ − (rA + rB) (Eq. 4.15; in the
   /// cross-section plane for slices, to the wall plane for walls), whatever the model, mm.
   double deformed_gap(const Contact& contact, const Eigen::Vector3d& u_a,

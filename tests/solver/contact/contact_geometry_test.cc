@@ -296,5 +296,33 @@ TEST(ContactGeometry, FrictionTurnsWithTheTangentAtItsFullSize) {
   EXPECT_NEAR(c.friction.dot(before) / before.squaredNorm(), h / std::hypot(w, h), 1e-14);
 }
 
+// Centres that have passed through each other: B, a height h above A, moved down by 2h + e ends
+// h + e below it, farther than half the contact distance, so the displaced centres give a
+// direction, but one against the contact's normal. Taking it would push B on through A and set
+// this slice against its neighbours, which still push B up. The slice keeps its normal and its
+// overlap is measured along it: (rA + rB) + h + e, more than the radii, not (rA + rB) − (h + e).
+TEST(ContactGeometry, CentresThatPassedThroughEachOtherKeepTheNormal) {
+  const double h = 0.018, e = 0.002;
+  const auto fibres =
+      fibres_of({fibre("A", {0, 0, 0}, {1, 0, 0}, rA), fibre("B", {0, 0, h}, {1, 0, h}, rB)});
+  const ContactGeometry geometry(fibres, {}, V::UnitX(), ContactGeometryModel::deformed);
+  Contact c;
+  c.kind = ContactKind::line;
+  c.a = 0;
+  c.b = 1;
+  c.s_a = c.s_b = 0.5;
+  geometry.place_on_undeformed(c);
+  const V through(0, 0.001, -(2 * h + e));
+  EXPECT_TRUE(geometry.passed_through(c, V::Zero(), through));
+  geometry.follow(c, V::Zero(), through);
+  EXPECT_NEAR((c.normal - V::UnitZ()).norm(), 0.0, kTight);
+  EXPECT_NEAR(geometry.overlap(c, V::Zero(), through), rA + rB + h + e, kTight);
+  // Short of the other side the normal follows as before.
+  const V short_of_it(0, 0.001, -0.4 * h);
+  EXPECT_FALSE(geometry.passed_through(c, V::Zero(), short_of_it));
+  geometry.follow(c, V::Zero(), short_of_it);
+  EXPECT_NEAR((c.normal - V(0, 0.001, 0.6 * h).normalized()).norm(), 0.0, kTight);
+}
+
 }  // namespace
 }  // namespace fibrecheck
