@@ -38,6 +38,21 @@ std::vector<Fibre> fibres_of(const std::vector<FibreSpec>& specs, const V& axis 
   return fibres;
 }
 
+// Two parallel tow fibres along x, B a height h above A, and the slice between them at mid-span.
+std::vector<Fibre> stacked(double h) {
+  return fibres_of({fibre("A", {0, 0, 0}, {1, 0, 0}, rA), fibre("B", {0, 0, h}, {1, 0, h}, rB)});
+}
+
+Contact mid_span_slice(const ContactGeometry& geometry) {
+  Contact c;
+  c.kind = ContactKind::line;
+  c.a = 0;
+  c.b = 1;
+  c.s_a = c.s_b = 0.5;
+  geometry.place_on_undeformed(c);
+  return c;
+}
+
 Contact point_contact() {
   Contact c;
   c.kind = ContactKind::point;
@@ -276,15 +291,9 @@ TEST(ContactGeometry, MeasureSetsEveryOverlapFromItsOwnDisplacements) {
 // the factor cos θ = h/√(w² + h²) and count as sticking with all the slip it has.
 TEST(ContactGeometry, FrictionTurnsWithTheTangentAtItsFullSize) {
   const double h = 0.018, w = 0.01;
-  const auto fibres =
-      fibres_of({fibre("A", {0, 0, 0}, {1, 0, 0}, rA), fibre("B", {0, 0, h}, {1, 0, h}, rB)});
+  const auto fibres = stacked(h);
   const ContactGeometry geometry(fibres, {}, V::UnitX(), ContactGeometryModel::deformed);
-  Contact c;
-  c.kind = ContactKind::line;
-  c.a = 0;
-  c.b = 1;
-  c.s_a = c.s_b = 0.5;
-  geometry.place_on_undeformed(c);
+  Contact c = mid_span_slice(geometry);
   ASSERT_EQ(c.tangents, 1);
   const V before = 3e-6 * c.tangent;
   c.friction = before;
@@ -303,15 +312,9 @@ TEST(ContactGeometry, FrictionTurnsWithTheTangentAtItsFullSize) {
 // overlap is measured along it: (rA + rB) + h + e, more than the radii, not (rA + rB) − (h + e).
 TEST(ContactGeometry, CentresThatPassedThroughEachOtherKeepTheNormal) {
   const double h = 0.018, e = 0.002;
-  const auto fibres =
-      fibres_of({fibre("A", {0, 0, 0}, {1, 0, 0}, rA), fibre("B", {0, 0, h}, {1, 0, h}, rB)});
+  const auto fibres = stacked(h);
   const ContactGeometry geometry(fibres, {}, V::UnitX(), ContactGeometryModel::deformed);
-  Contact c;
-  c.kind = ContactKind::line;
-  c.a = 0;
-  c.b = 1;
-  c.s_a = c.s_b = 0.5;
-  geometry.place_on_undeformed(c);
+  Contact c = mid_span_slice(geometry);
   const V through(0, 0.001, -(2 * h + e));
   EXPECT_TRUE(geometry.passed_through(c, V::Zero(), through));
   geometry.follow(c, V::Zero(), through);
