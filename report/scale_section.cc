@@ -1,6 +1,7 @@
 #include "scale_section.h"
 
 #include <algorithm>
+#include <cmath>
 #include <map>
 #include <optional>
 #include <sstream>
@@ -70,8 +71,11 @@ bool exported(const ScaleStudy& study, int fibres) {
 }
 
 /// "Two processes of the reference hold … of one process's peak": for every size the reference
-/// ran on one process and on more, resident and proportional; empty without such a pair.
+/// ran on one process and on more, resident, proportional and resident above the program's own
+/// floor (the libraries' pages every process holds, whatever it solves); empty without such a
+/// pair.
 std::string processes_sentence(const ScaleStudy& study) {
+  const double floor = study.program_floor_memory_mb;
   std::ostringstream out;
   out.precision(2);
   out << std::fixed;
@@ -86,13 +90,19 @@ std::string processes_sentence(const ScaleStudy& study) {
           << " processes: " << many.peak_memory_mb / one.peak_memory_mb;
       if (one.peak_proportional_memory_mb > 0.0 && many.peak_proportional_memory_mb > 0.0)
         out << " / " << many.peak_proportional_memory_mb / one.peak_proportional_memory_mb;
+      if (floor > 0.0 && one.peak_memory_mb > floor)
+        out << " / " << (many.peak_memory_mb - floor) / (one.peak_memory_mb - floor);
       if (exported(study, one.fibres)) out << " (exporting its problem for Siconos)";
     }
   }
   if (pairs == 0) return "";
-  return " The reference's peak per process on several processes over that on one, resident / "
-         "proportional: " +
-         out.str() + ".";
+  std::ostringstream measures;
+  measures << "resident / proportional";
+  if (floor > 0.0)
+    measures << " / resident above the " << std::lround(floor)
+             << " MB the program holds when it only starts and prints its help";
+  return " The reference's peak per process on several processes over that on one, " +
+         measures.str() + ": " + out.str() + ".";
 }
 
 /// A measure of the converged runs against fibres (log-log), one series per solver and method.

@@ -265,6 +265,14 @@ double slope(const std::vector<double>& x, const std::vector<double>& y) {
   return d != 0.0 ? (n * sxy - sx * sy) / d : NAN;
 }
 
+/// The program's peak resident memory when it only starts: what the libraries it maps cost every
+/// process, whatever it solves. 0 when the program is not there to run.
+double program_floor(const ScaleStudyOptions& o, const ProgramRunner& run) {
+  if (o.program.empty()) return 0.0;
+  const ProgramRun r = run({o.program, "--help"});
+  return r.exit_code == 0 ? r.peak_memory_mb : 0.0;
+}
+
 /// Exponents over the converged sizes of each solver, method and process count.
 std::vector<ScaleExponent> exponents_of(const std::vector<ScalePoint>& points) {
   std::vector<std::tuple<std::string, std::string, int>> series;
@@ -330,6 +338,7 @@ ScaleStudy run_scale_study(const ScaleStudyOptions& o, const ProgramRunner& run,
   ScaleStudy study;
   study.slices = o.slices;
   study.seed = o.seed;
+  study.program_floor_memory_mb = program_floor(o, run);
   ScaleRuns runs(o, run, folder, store, progress, study);
   for (int n : sizes) runs.size(n);
   study.exponents = exponents_of(study.points);

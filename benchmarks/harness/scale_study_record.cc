@@ -65,11 +65,13 @@ json to_json(const ScaleStudy& s) {
   json points = json::array(), exponents = json::array();
   for (const ScalePoint& p : s.points) points.push_back(to_json(p));
   for (const ScaleExponent& e : s.exponents) exponents.push_back(to_json(e));
-  return {{"study", "scale"},
-          {"slices", s.slices},
-          {"seed", s.seed},
-          {"points", points},
-          {"exponents", exponents}};
+  json j = {{"study", "scale"},
+            {"slices", s.slices},
+            {"seed", s.seed},
+            {"points", points},
+            {"exponents", exponents}};
+  j["program_floor_memory_mb"] = s.program_floor_memory_mb;
+  return j;
 }
 
 bool is_scale_study(const json& j) {
@@ -79,6 +81,7 @@ bool is_scale_study(const json& j) {
 void from_json(const json& j, ScaleStudy& s) {
   s.slices = j.at("slices");
   s.seed = j.at("seed");
+  s.program_floor_memory_mb = j.value("program_floor_memory_mb", 0.0);
   s.points = j.at("points").get<std::vector<ScalePoint>>();
   s.exponents = j.at("exponents").get<std::vector<ScaleExponent>>();
 }

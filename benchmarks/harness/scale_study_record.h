@@ -39,6 +39,9 @@ struct ScaleExponent {
 struct ScaleStudy {
   int slices = 0;
   std::uint64_t seed = 0;
+  /// The peak resident memory of the program that only starts (`fibrecheck --help`): the
+  /// libraries' pages, which every process holds; 0 when not measured.
+  double program_floor_memory_mb = 0.0;
   std::vector<ScalePoint> points;
   std::vector<ScaleExponent> exponents;
 };

@@ -11,8 +11,9 @@
 
 #include "input_error.h"
 #include "report_data.h"
-#include "slurp.h"
 #include "report_writer.h"
+#include "scale_study_record.h"
+#include "slurp.h"
 
 namespace fibrecheck {
 namespace {
@@ -126,6 +127,35 @@ TEST(Report, WithoutGnuplotTheTablesStillComeOut) {
   EXPECT_NE(summary.missing.front().find("gnuplot"), std::string::npos) << summary.missing.front();
   EXPECT_NE(slurp(out / "report.md").find("Figures not drawn"), std::string::npos);
   EXPECT_TRUE(fs::exists(out / "tables" / "comparison.tex"));
+}
+
+// The scale section's ratio of the reference's memory on two processes over one, three ways:
+// resident 275 / 400 = 0.69, proportional 200 / 380 = 0.53, and resident above the program's own
+// floor of 150 MB, (275 − 150) / (400 − 150) = 0.50.
+TEST(Report, TheScaleSectionSaysWhatTwoProcessesHoldAboveTheProgramsFloor) {
+  ScaleStudy study;
+  study.slices = 100, study.seed = 3, study.program_floor_memory_mb = 150.0;
+  for (const int processes : {1, 2}) {
+    ScalePoint p;
+    p.fibres = 300, p.slices = 100, p.solver = "fem", p.method = "active_set";
+    p.processes = processes, p.status = "converged", p.iterations = 2, p.time_s = 10.0;
+    p.peak_memory_mb = processes == 1 ? 400.0 : 275.0;
+    p.peak_proportional_memory_mb = processes == 1 ? 380.0 : 200.0;
+    study.points.push_back(p);
+  }
+  ReportData data;
+  data.scale_studies = {study};
+  const fs::path out = ::testing::TempDir() + "report_scale_floor";
+  fs::remove_all(out);
+  setenv("FIBRECHECK_GNUPLOT", "/nonexistent/gnuplot", 1);
+  write_report(data, out.string());
+  unsetenv("FIBRECHECK_GNUPLOT");
+  const std::string md = slurp(out / "report.md");
+  EXPECT_NE(md.find("resident / proportional / resident above the 150 MB the program holds when "
+                    "it only starts and prints its help: 300 fibres, 2 processes: 0.69 / 0.53 / "
+                    "0.50."),
+            std::string::npos)
+      << md;
 }
 
 TEST(Report, AFolderThatDoesNotExistIsBadInput) {

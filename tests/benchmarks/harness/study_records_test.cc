@@ -148,6 +148,7 @@ TEST(StudyRecords, TheScaleStudyKeepsItsFieldNames) {
   ScaleStudy s;
   s.slices = 10;
   s.seed = 3;
+  s.program_floor_memory_mb = 157.25;
   ScalePoint p;
   p.fibres = 7, p.slices = 10, p.solver = "iterative", p.method = "accelerated";
   p.status = "converged", p.iterations = 40, p.time_s = 0.002;
@@ -155,7 +156,8 @@ TEST(StudyRecords, TheScaleStudyKeepsItsFieldNames) {
   s.exponents.push_back({"iterative", "accelerated", 1, 2, 1.2, NAN});
   const nlohmann::json j = to_json(s);
   EXPECT_TRUE(is_scale_study(j));
-  EXPECT_EQ(keys(j), (Keys{"study", "slices", "seed", "points", "exponents"}));
+  EXPECT_EQ(keys(j),
+            (Keys{"study", "slices", "seed", "program_floor_memory_mb", "points", "exponents"}));
   EXPECT_EQ(keys(j["points"][0]),
             (Keys{"fibres", "slices", "solver", "method", "processes", "status", "candidates",
                   "active", "iterations", "unknowns", "time_s", "process_time_s",
@@ -166,6 +168,11 @@ TEST(StudyRecords, TheScaleStudyKeepsItsFieldNames) {
   const ScaleStudy back = j.get<ScaleStudy>();
   EXPECT_EQ(back.points.at(0).ms_per_iteration(), p.ms_per_iteration());
   EXPECT_TRUE(std::isnan(back.exponents.at(0).memory));
+  EXPECT_EQ(back.program_floor_memory_mb, 157.25);
+  // A study recorded before the floor was measured reads as not measured.
+  nlohmann::json older = j;
+  older.erase("program_floor_memory_mb");
+  EXPECT_EQ(older.get<ScaleStudy>().program_floor_memory_mb, 0.0);
   EXPECT_FALSE(is_scale_study(nlohmann::json::array()));
 }
 
