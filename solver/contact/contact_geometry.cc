@@ -88,15 +88,20 @@ double ContactGeometry::overlap(const Contact& c, const Eigen::Vector3d& u_a,
                                 const Eigen::Vector3d& u_b) const {
   if (!deformed() || c.kind == ContactKind::wall) return overlap_along_normal(c, u_a, u_b);
   const double radii = fibres_[c.a].radius + fibres_[c.b].radius;
-  const double distance = centre_difference(c, u_a, u_b).norm();
-  if (distance < 0.5 * radii || passed_through(c, u_a, u_b))
-    return overlap_along_normal(c, u_a, u_b);
-  return radii - distance;
+  const Eigen::Vector3d difference = centre_difference(c, u_a, u_b);
+  return keeps_normal(c, difference) ? radii - c.normal.dot(difference) : radii - difference.norm();
 }
 
 bool ContactGeometry::passed_through(const Contact& c, const Eigen::Vector3d& u_a,
                                      const Eigen::Vector3d& u_b) const {
   return c.kind != ContactKind::wall && centre_difference(c, u_a, u_b).dot(c.normal) <= 0.0;
+}
+
+// Centres closer than half the contact distance give no trustworthy direction, and centres that
+// have passed through each other one that would push them on through.
+bool ContactGeometry::keeps_normal(const Contact& c, const Eigen::Vector3d& difference) const {
+  return difference.norm() < 0.5 * (fibres_[c.a].radius + fibres_[c.b].radius) ||
+         difference.dot(c.normal) <= 0.0;
 }
 
 double ContactGeometry::deformed_gap(const Contact& c, const Eigen::Vector3d& u_a,
@@ -119,10 +124,8 @@ void ContactGeometry::follow(Contact& c, const Eigen::Vector3d& u_a,
                              const Eigen::Vector3d& u_b) const {
   if (c.kind == ContactKind::wall) return;
   const Eigen::Vector3d difference = centre_difference(c, u_a, u_b);
-  const double distance = difference.norm();
-  if (distance < 0.5 * (fibres_[c.a].radius + fibres_[c.b].radius)) return;
-  if (passed_through(c, u_a, u_b)) return;
-  turn(c, difference / distance);
+  if (keeps_normal(c, difference)) return;
+  turn(c, difference / difference.norm());
 }
 
 void ContactGeometry::turn(Contact& c, const Eigen::Vector3d& normal) const {

@@ -104,6 +104,9 @@ class ContactGeometry {
   /// B′c − A′c (the part along the tow axis dropped for slices), mm.
   Eigen::Vector3d centre_difference(const Contact& contact, const Eigen::Vector3d& u_a,
                                     const Eigen::Vector3d& u_b) const;
+  /// Whether a contact keeps its normal on the deformed fibres, its displaced centres B′c − A′c
+  /// being `difference`: nearly coincident, or passed through each other.
+  bool keeps_normal(const Contact& contact, const Eigen::Vector3d& difference) const;
 
   ContactGeometryModel model_;
   Eigen::Vector3d axis_;
