@@ -292,13 +292,16 @@ std::optional<Table> points_table(const CompactionStudyScene& s) {
   return t;
 }
 
-/// What each step of `s` cost the iterative solver: iterations and seconds, per run.
+/// What each step of `s` cost the iterative solver: iterations and seconds, and the updates of the
+/// normals and of the Tresca radii where there were any, per run.
 Table cost_table(const CompactionStudyScene& s) {
   Table t;
   t.label = "compaction_cost_" + file_name_slug(s.scene);
   t.caption = "What each step of " + s.scene +
               "'s load path cost the iterative solver, per run: iterations (wall time in "
-              "seconds), each step warm-started from the last." +
+              "seconds), each step warm-started from the last; after the slash, the updates of "
+              "the normals to the displaced fibres and of the Tresca radii (records kept before "
+              "these were counted show none)." +
               kColumnKey;
   t.header = {"Step", "Vf"};
   for (const CompactionRun& r : s.runs)
@@ -313,7 +316,11 @@ Table cost_table(const CompactionStudyScene& s) {
       }
       const CompactionPoint& p = r.points[k];
       row[1] = fixed3(p.fibre_volume_fraction);
-      row.push_back(std::to_string(p.iterations) + " (" + seconds(p.time_s) + " s)");
+      std::string cell = std::to_string(p.iterations) + " (" + seconds(p.time_s) + " s)";
+      if (p.geometric_updates > 0 || p.fixed_point_updates > 0)
+        cell += " / " + std::to_string(p.geometric_updates) + ", " +
+                std::to_string(p.fixed_point_updates);
+      row.push_back(cell);
     }
     t.rows.push_back(row);
   }

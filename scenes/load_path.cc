@@ -94,6 +94,8 @@ StepResult step_result(const Scene& stepped, const LoadStep& step, const Result&
   e.contacts_per_fibre =
       stepped.fibres.empty() ? 0.0 : static_cast<double>(sides) / stepped.fibres.size();
   e.iterations = r.iterations;
+  e.geometric_updates = r.geometric_updates;
+  e.fixed_point_updates = r.friction ? r.friction->fixed_point_updates : 0;
   e.wall_time_s = r.wall_time_s;
   e.status = r.status;
   return e;

@@ -290,6 +290,8 @@ json result_to_json(const Result& r) {
                             {"strain_energy", step.strain_energy},
                             {"contacts_per_fibre", step.contacts_per_fibre},
                             {"iterations", step.iterations},
+                            {"geometric_updates", step.geometric_updates},
+                            {"fixed_point_updates", step.fixed_point_updates},
                             {"wall_time_s", step.wall_time_s},
                             {"status", to_string(step.status)}});
     }
@@ -429,6 +431,8 @@ Result result_from_json(const json& j, const std::string& source) {
         step.strain_energy = e.at("strain_energy").get<double>();
         step.contacts_per_fibre = e.at("contacts_per_fibre").get<double>();
         step.iterations = e.at("iterations").get<long>();
+        step.geometric_updates = e.value("geometric_updates", 0L);
+        step.fixed_point_updates = e.value("fixed_point_updates", 0L);
         step.wall_time_s = e.at("wall_time_s").get<double>();
         step.status = parse_status(e.at("status").get<std::string>(), source);
         r.steps.push_back(std::move(step));

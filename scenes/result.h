@@ -95,6 +95,8 @@ struct StepResult {
   double strain_energy = 0.0;       ///< N·mm, as the result's `strain_energy`
   double contacts_per_fibre = 0.0;  ///< contact points carrying force, each counted on both sides
   long iterations = 0;
+  long geometric_updates = 0;    ///< the step's updates of the normals (deformed contact)
+  long fixed_point_updates = 0;  ///< Coulomb friction: the step's as the result's `friction` counts
   double wall_time_s = 0.0;
   Status status = Status::converged;
 };

@@ -104,6 +104,8 @@ std::vector<CompactionPoint> points_of(const Result& result) {
     p.strain_energy = st.strain_energy;
     p.contacts_per_fibre = st.contacts_per_fibre;
     p.iterations = st.iterations;
+    p.geometric_updates = st.geometric_updates;
+    p.fixed_point_updates = st.fixed_point_updates;
     p.time_s = st.wall_time_s;
     p.status = to_string(st.status);
     points.push_back(p);

@@ -73,6 +73,8 @@ json to_json(const CompactionPoint& p) {
           {"strain_energy", p.strain_energy},
           {"contacts_per_fibre", p.contacts_per_fibre},
           {"iterations", p.iterations},
+          {"geometric_updates", p.geometric_updates},
+          {"fixed_point_updates", p.fixed_point_updates},
           {"wall_time_s", p.time_s},
           {"status", p.status}};
 }
@@ -86,6 +88,8 @@ void from_json(const json& j, CompactionPoint& p) {
   p.strain_energy = j.at("strain_energy");
   p.contacts_per_fibre = j.at("contacts_per_fibre");
   p.iterations = j.at("iterations");
+  p.geometric_updates = j.value("geometric_updates", 0L);  // 0 in records kept before them
+  p.fixed_point_updates = j.value("fixed_point_updates", 0L);
   p.time_s = j.at("wall_time_s");
   p.status = j.at("status");
 }

@@ -158,6 +158,33 @@ TEST(Report, TheScaleSectionSaysWhatTwoProcessesHoldAboveTheProgramsFloor) {
       << md;
 }
 
+// The compaction section's cost table gives each step's updates of the normals and of the Tresca
+// radii beside its iterations, and only where the record counted them.
+TEST(Report, TheCompactionCostTableCountsTheUpdatesOfEachStep) {
+  CompactionRun run;
+  run.solver = "iterative", run.rule = "accelerated", run.mu = 0.2;
+  run.friction_model = "coulomb", run.status = "converged";
+  for (int step : {1, 2}) {
+    CompactionPoint p;
+    p.step = step, p.compaction = 1.0 - 0.1 * step, p.fibre_volume_fraction = 0.4 + 0.1 * step;
+    p.pressure = 1e-3 * step, p.iterations = 1000 * step, p.time_s = 2.5, p.status = "converged";
+    if (step == 2) p.geometric_updates = 7, p.fixed_point_updates = 3;
+    run.points.push_back(p);
+  }
+  StoredCompactionStudy stored;
+  stored.study.scene = "tow", stored.study.youngs_modulus = 80000, stored.study.runs = {run};
+  ReportData data;
+  data.compaction_studies = {stored};
+  const fs::path out = ::testing::TempDir() + "report_compaction_cost";
+  fs::remove_all(out);
+  setenv("FIBRECHECK_GNUPLOT", "/nonexistent/gnuplot", 1);
+  write_report(data, out.string());
+  unsetenv("FIBRECHECK_GNUPLOT");
+  const std::string md = slurp(out / "report.md");
+  EXPECT_NE(md.find("| 1 | 0.500 | 1000 (2.5 s) |"), std::string::npos) << md;
+  EXPECT_NE(md.find("| 2 | 0.600 | 2000 (2.5 s) / 7, 3 |"), std::string::npos) << md;
+}
+
 TEST(Report, AFolderThatDoesNotExistIsBadInput) {
   EXPECT_THROW(read_report_data({"/nonexistent/folder"}), InputError);
 }

@@ -37,6 +37,38 @@ TEST(Result, RoundTripKeepsEveryField) {
   EXPECT_TRUE(j["contacts"][0]["points"][0].contains("position"));
 }
 
+// A load path's steps keep their own counts of updates; results written before the counts were
+// kept read as 0.
+TEST(Result, StepsKeepTheirUpdatesAndOlderStepsReadAsZero) {
+  Result r;
+  r.scene = "path";
+  StepResult step;
+  step.compaction = 0.9;
+  step.wall_pressure = {{"top", 1e-3}};
+  step.iterations = 120;
+  step.geometric_updates = 7;
+  step.fixed_point_updates = 3;
+  r.steps = {step, step};
+  r.steps[1].geometric_updates = 11;
+  const std::string path = ::testing::TempDir() + "steps.result.json";
+  write_result(path, r);
+  const Result back = read_result(path);
+  ASSERT_EQ(back.steps.size(), 2u);
+  EXPECT_EQ(back.steps[0].geometric_updates, 7);
+  EXPECT_EQ(back.steps[1].geometric_updates, 11);
+  EXPECT_EQ(back.steps[1].fixed_point_updates, 3);
+  nlohmann::json older = result_to_json(r);
+  for (nlohmann::json& e : older["steps"]) {
+    ASSERT_TRUE(e.contains("geometric_updates") && e.contains("fixed_point_updates"));
+    e.erase("geometric_updates");
+    e.erase("fixed_point_updates");
+  }
+  const Result old = result_from_json(older, "older.result.json");
+  EXPECT_EQ(old.steps.at(1).geometric_updates, 0);
+  EXPECT_EQ(old.steps.at(1).fixed_point_updates, 0);
+  EXPECT_EQ(old.steps.at(1).iterations, 120);
+}
+
 TEST(Result, AtomicWriteLeavesNoTemporaryAndReplacesWhole) {
   const std::string folder = ::testing::TempDir() + "atomic/";
   std::filesystem::remove_all(folder);

@@ -77,7 +77,8 @@ TowOptions compacted_tow_19() {
 // t_d, no friction beyond μP — and the contact criterion. Under the deformed geometry this needs
 // the friction to turn with its tangent at full size, and the Tresca radii to be judged against
 // the disks the inner problem had: otherwise contacts slipping on their circle are taken for
-// sticking ones with all their slip, and the run ends without progress.
+// sticking ones with all their slip, and the run ends without progress. Each step keeps its own
+// count of the updates of the Tresca radii and of the normals.
 TEST(CoulombFriction, CompactedTowConvergesEveryStepInBothGeometries) {
   const TowOptions tow = compacted_tow_19();
   for (ContactGeometryModel geometry :
@@ -88,11 +89,22 @@ TEST(CoulombFriction, CompactedTowConvergesEveryStepInBothGeometries) {
     const Result r = solve(s);
     ASSERT_EQ(r.status, Status::converged) << r.message;
     ASSERT_EQ(r.steps.size(), 12u);
-    for (const StepResult& step : r.steps) EXPECT_EQ(step.status, Status::converged);
+    ASSERT_TRUE(r.friction.has_value());
+    for (const StepResult& step : r.steps) {
+      EXPECT_EQ(step.status, Status::converged);
+      // A step whose fibres push has set its radii at least once, and under the deformed
+      // geometry updated its normals; linearised normals never follow.
+      if (step.strain_energy > 0.0) EXPECT_GT(step.fixed_point_updates, 0) << step.compaction;
+      if (geometry == ContactGeometryModel::linearised)
+        EXPECT_EQ(step.geometric_updates, 0) << step.compaction;
+      else if (step.strain_energy > 0.0)
+        EXPECT_GT(step.geometric_updates, 0) << step.compaction;
+    }
+    EXPECT_EQ(r.steps.back().fixed_point_updates, r.friction->fixed_point_updates);
+    EXPECT_EQ(r.steps.back().geometric_updates, r.geometric_updates);
     const double t = s.overlap_tolerance();
     EXPECT_LT(r.max_overlap, t);
     EXPECT_LT(r.gap_force_residual, t);
-    ASSERT_TRUE(r.friction.has_value());
     EXPECT_LT(r.friction->stick_residual, t);
     EXPECT_LT(r.friction->slip_residual, t);
     double largest = 0.0;

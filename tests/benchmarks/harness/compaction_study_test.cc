@@ -58,7 +58,8 @@ TEST(CompactionFit, TooFewPointsGiveNoFit) {
 }
 
 /// A solver that returns a load path whose mean wall pressure follows van Wyk's law in Vf (each
-/// wall p and 3p, mean 2p), converging on every step but the last when `fail_last`.
+/// wall p and 3p, mean 2p), converging on every step but the last when `fail_last`; step k (from
+/// 0) updated its normals k + 2 times and its Tresca radii k times.
 Result made_up(const Scene& s, double offset, bool fail_last) {
   Result r;
   r.scene = s.name;
@@ -74,6 +75,8 @@ Result made_up(const Scene& s, double offset, bool fail_last) {
         offset;
     st.wall_pressure = {{"low", p}, {"high", 3 * p}};
     st.strain_energy = 1e-6 * (k + 1);
+    st.geometric_updates = static_cast<long>(k) + 2;
+    st.fixed_point_updates = static_cast<long>(k);
     st.status = fail_last && k + 1 == s.steps.size() ? Status::max_iterations : Status::converged;
     r.steps.push_back(st);
   }
@@ -140,9 +143,16 @@ TEST(CompactionStudy, WritesCurvesFitsAndAgreement) {
   EXPECT_TRUE(first["van_wyk"].contains("k") && first["van_wyk"].contains("vf0") &&
               first["van_wyk"].contains("r2"));
   EXPECT_TRUE(first["toll"].contains("n"));
-  // Run again: every point comes from disk.
+  // Each point keeps its step's updates.
+  EXPECT_EQ(it.points.at(3).geometric_updates, 5);
+  EXPECT_EQ(it.points.at(3).fixed_point_updates, 3);
+  // Run again: every point comes from disk, with its updates.
   solvers.iterative = [](const Scene&) -> Result { throw std::runtime_error("not again"); };
-  EXPECT_NO_THROW(run_compaction_study({s}, options, solvers, folder));
+  std::vector<CompactionStudyScene> again;
+  EXPECT_NO_THROW(again = run_compaction_study({s}, options, solvers, folder));
+  ASSERT_EQ(again.size(), 1u);
+  EXPECT_EQ(again[0].runs.at(0).points.at(3).geometric_updates, 5);
+  EXPECT_EQ(again[0].runs.at(0).points.at(3).fixed_point_updates, 3);
 }
 
 // With friction: the iterative solver with Coulomb's law and with the seed's rule, and the

@@ -112,7 +112,7 @@ TEST(StudyRecords, TheCompactionStudyKeepsItsFieldNames) {
   r.mu = 0.2;
   r.friction_model = "coulomb";
   r.status = "converged";
-  r.points.push_back({1, 0.9, 1.0, 0.43, 1e-3, 2e-6, 3.5, 0.01, 120, "converged"});
+  r.points.push_back({1, 0.9, 1.0, 0.43, 1e-3, 2e-6, 3.5, 0.01, 120, 7, 3, "converged"});
   r.sections.emplace_back(1, "tow/iterative_mu0_2_coulomb.step1.result.json");
   r.van_wyk = fit_power_law({0.42, 0.45}, {1e-3, 2e-3}, 80000, 3.0);
   CompactionStudyScene s;
@@ -129,7 +129,8 @@ TEST(StudyRecords, TheCompactionStudyKeepsItsFieldNames) {
                   "wall_time_s", "points", "sections", "van_wyk", "toll"}));
   EXPECT_EQ(keys(run["points"][0]),
             (Keys{"step", "compaction", "load_factor", "fibre_volume_fraction", "pressure_MPa",
-                  "strain_energy", "contacts_per_fibre", "iterations", "wall_time_s", "status"}));
+                  "strain_energy", "contacts_per_fibre", "iterations", "geometric_updates",
+                  "fixed_point_updates", "wall_time_s", "status"}));
   EXPECT_EQ(keys(run["van_wyk"]), (Keys{"k", "vf0", "r2", "points"}));
   EXPECT_EQ(keys(run["toll"]), (Keys{"k", "vf0", "r2", "points", "n"}));
   EXPECT_EQ(keys(j["agreement"][0]),
