@@ -21,9 +21,8 @@ struct CompactionPoint {
   double strain_energy = 0, contacts_per_fibre = 0;
   double time_s = 0;  ///< `wall_time_s`
   long iterations = 0;
-  long geometric_updates = 0;  ///< the step's updates of the normals
-  long fixed_point_updates =
-      0;  ///< the step's updates of the Tresca radii (reference: as it counts)
+  long geometric_updates = 0;    ///< the step's updates of the normals
+  long fixed_point_updates = 0;  ///< the step's, as its result's `friction` counts them
   std::string status;
 };
 

@@ -28,6 +28,17 @@ int count(const std::string& text, const std::string& what) {
 
 const std::string kFixture = FIBRECHECK_REPORT_FIXTURE;
 
+/// The report.md `write_report` makes of `data` in a fresh folder `name`, without gnuplot (the
+/// tables alone).
+std::string markdown_without_figures(const ReportData& data, const std::string& name) {
+  const fs::path out = ::testing::TempDir() + name;
+  fs::remove_all(out);
+  setenv("FIBRECHECK_GNUPLOT", "/nonexistent/gnuplot", 1);
+  write_report(data, out.string());
+  unsetenv("FIBRECHECK_GNUPLOT");
+  return slurp(out / "report.md");
+}
+
 TEST(Report, FromTheFixture) {
   const fs::path out = ::testing::TempDir() + "report_fixture";
   fs::remove_all(out);
@@ -145,12 +156,7 @@ TEST(Report, TheScaleSectionSaysWhatTwoProcessesHoldAboveTheProgramsFloor) {
   }
   ReportData data;
   data.scale_studies = {study};
-  const fs::path out = ::testing::TempDir() + "report_scale_floor";
-  fs::remove_all(out);
-  setenv("FIBRECHECK_GNUPLOT", "/nonexistent/gnuplot", 1);
-  write_report(data, out.string());
-  unsetenv("FIBRECHECK_GNUPLOT");
-  const std::string md = slurp(out / "report.md");
+  const std::string md = markdown_without_figures(data, "report_scale_floor");
   EXPECT_NE(md.find("resident / proportional / resident above the 150 MB the program holds when "
                     "it only starts and prints its help: 300 fibres, 2 processes: 0.69 / 0.53 / "
                     "0.50."),
@@ -175,12 +181,7 @@ TEST(Report, TheCompactionCostTableCountsTheUpdatesOfEachStep) {
   stored.study.scene = "tow", stored.study.youngs_modulus = 80000, stored.study.runs = {run};
   ReportData data;
   data.compaction_studies = {stored};
-  const fs::path out = ::testing::TempDir() + "report_compaction_cost";
-  fs::remove_all(out);
-  setenv("FIBRECHECK_GNUPLOT", "/nonexistent/gnuplot", 1);
-  write_report(data, out.string());
-  unsetenv("FIBRECHECK_GNUPLOT");
-  const std::string md = slurp(out / "report.md");
+  const std::string md = markdown_without_figures(data, "report_compaction_cost");
   EXPECT_NE(md.find("| 1 | 0.500 | 1000 (2.5 s) |"), std::string::npos) << md;
   EXPECT_NE(md.find("| 2 | 0.600 | 2000 (2.5 s) / 7, 3 |"), std::string::npos) << md;
 }
