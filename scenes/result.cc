@@ -191,6 +191,7 @@ json result_to_json(const Result& r) {
   j["deformed_test"] = {{"gap_where_pushing", r.deformed_test.gap_where_pushing},
                         {"overlap_where_free", r.deformed_test.overlap_where_free}};
   j["geometric_updates"] = r.geometric_updates;
+  j["exact_answers"] = r.exact_answers;
   if (r.error_estimate)
     j["error_estimate"] = {
         {"deflection", r.error_estimate->deflection}, {"force", r.error_estimate->force},
@@ -322,6 +323,7 @@ Result result_from_json(const json& j, const std::string& source) {
     r.max_slope = j.value("max_slope", 0.0);
     r.geometry = j.value("geometry", std::string("linearised"));
     r.geometric_updates = j.value("geometric_updates", 0L);
+    r.exact_answers = j.value("exact_answers", 0L);
     if (j.contains("deformed_test")) {
       r.deformed_test.gap_where_pushing = j["deformed_test"].value("gap_where_pushing", 0.0);
       r.deformed_test.overlap_where_free = j["deformed_test"].value("overlap_where_free", 0.0);

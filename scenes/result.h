@@ -206,6 +206,9 @@ struct Result {
   /// Deformed contact: how often the normals (and crossings) were made to follow the displaced
   /// centres between linearised problems (the reference: its exact solves beyond the first).
   long geometric_updates = 0;
+  /// Iterative results: states that took the error estimate's answer (their linearised problem
+  /// solved exactly on its pushing set), to settle the normals or to meet force_tolerance.
+  long exact_answers = 0;
   /// Present in results of the finite-element reference.
   std::optional<FiniteElementFigures> finite_elements;
   /// Present when the scene has friction (μ > 0).

@@ -67,6 +67,7 @@ Result iterative_result(const Scene& scene, const SolverOptions& options,
   r.history = record.history;
   r.geometry = to_string(scene.contact.geometry);
   r.geometric_updates = record.geometric_updates;
+  r.exact_answers = record.exact_answers;
   r.deformed_test =
       deformed_test(detector, state.contacts, state.u_a, state.u_b,
                     [&](int f, const std::vector<double>& s, std::vector<Eigen::Vector3d>& u) {

@@ -20,6 +20,7 @@ struct IterationRecord {
   double lambda_max = 0.0;  ///< of the operator the step acted on
   long tresca_updates = 0;
   long geometric_updates = 0;
+  long exact_answers = 0;
   Residuals residuals;  ///< at the last evaluation
   std::vector<std::string> warnings;
   std::vector<HistoryEntry> history;

@@ -40,6 +40,10 @@ struct SolverOptions {
   long max_iterations = 100000;
   /// Candidate contacts are found this fraction of the smallest radius before they touch.
   double margin_factor = 0.1;
+  /// Deformed contact, frictionless, rules auto, accelerated and cg: an update of the normals that
+  /// leaves a residual above t_d but below this many t_d takes the error estimate's answer (0:
+  /// never; the sequence of linearised problems alone).
+  double exact_answer_below = 100.0;
   /// Called about once a second with the state of the iteration.
   std::function<void(const IterationProgress&)> progress;
   double progress_interval_s = 1.0;

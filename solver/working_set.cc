@@ -61,6 +61,13 @@ bool WorkingSet::revise(IterationState& state) {
   return true;
 }
 
+bool WorkingSet::outside_overlaps(const IterationState& state, double t) {
+  measure_candidates(state);
+  for (std::size_t i = 0; i < candidates_.size(); ++i)
+    if (slot_[i] < 0 && overlap_[i] > t) return true;
+  return false;
+}
+
 void WorkingSet::rebuild(IterationState& state, std::vector<int> members) {
   // Members keep their state and momentum, newcomers start from P = 0.
   const bool momentum = state.iterate.size() == static_cast<Eigen::Index>(state.contacts.size());

@@ -38,6 +38,9 @@ class WorkingSet {
   void enter(IterationState& state);
   /// Measures every candidate again and revises the set; true when it changed.
   bool revise(IterationState& state);
+  /// Measures every candidate again; true when one outside the set overlaps by more than `t`
+  /// (the set leaves it without force, so the contact criterion does not hold for it).
+  bool outside_overlaps(const IterationState& state, double t);
   /// Counts an iteration; true when a revision is due.
   bool due() {
     if (++since_revision_ < revision_interval_) return false;

@@ -60,7 +60,9 @@ constexpr double kTruthFloor = 1e-10;
 
 // Under the seed's criterion at t_d of 1e-3 and 1e-5 of the smallest radius (and the scene's own):
 // wherever the true error exceeds 1e-10, the estimate lies within [0.5, 3] times it, in force and
-// in deflection.
+// in deflection. The states are the iteration's own: one that took the estimate's answer to
+// settle its normals is that estimate's fixed point, and what it leaves (on compaction_test 7e-9
+// in force at t_d = 1e-7 mm, the crossings' places) the estimate cannot see.
 TEST(ErrorEstimate, EffectivityIndexLiesBetweenHalfAndThree) {
   for (const Scene& scene : both_geometries(estimate_scenes())) {
     SCOPED_TRACE(scene.name + ", " + to_string(scene.contact.geometry));
@@ -73,7 +75,9 @@ TEST(ErrorEstimate, EffectivityIndexLiesBetweenHalfAndThree) {
       Scene s = scene;
       s.solver.overlap_tolerance = td;
       s.solver.force_tolerance = 0.0;
-      const Result run = solve_iteratively(s, SolverOptions::from_scene(s));
+      SolverOptions options = SolverOptions::from_scene(s);
+      options.exact_answer_below = 0.0;
+      const Result run = solve_iteratively(s, options);
       ASSERT_EQ(run.status, Status::converged) << run.message;
       ASSERT_TRUE(run.error_estimate.has_value());
       const Errors truth = measure_errors(run, exact, scene.name).errors;

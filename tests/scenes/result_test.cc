@@ -37,8 +37,8 @@ TEST(Result, RoundTripKeepsEveryField) {
   EXPECT_TRUE(j["contacts"][0]["points"][0].contains("position"));
 }
 
-// A load path's steps keep their own counts of updates; results written before the counts were
-// kept read as 0.
+// A load path's steps keep their own counts of updates, and the result its exact answers; results
+// written before the counts were kept read as 0.
 TEST(Result, StepsKeepTheirUpdatesAndOlderStepsReadAsZero) {
   Result r;
   r.scene = "path";
@@ -50,9 +50,11 @@ TEST(Result, StepsKeepTheirUpdatesAndOlderStepsReadAsZero) {
   step.fixed_point_updates = 3;
   r.steps = {step, step};
   r.steps[1].geometric_updates = 11;
+  r.exact_answers = 2;
   const std::string path = ::testing::TempDir() + "steps.result.json";
   write_result(path, r);
   const Result back = read_result(path);
+  EXPECT_EQ(back.exact_answers, 2);
   ASSERT_EQ(back.steps.size(), 2u);
   EXPECT_EQ(back.steps[0].geometric_updates, 7);
   EXPECT_EQ(back.steps[1].geometric_updates, 11);
@@ -63,7 +65,10 @@ TEST(Result, StepsKeepTheirUpdatesAndOlderStepsReadAsZero) {
     e.erase("geometric_updates");
     e.erase("fixed_point_updates");
   }
+  ASSERT_TRUE(older.contains("exact_answers"));
+  older.erase("exact_answers");
   const Result old = result_from_json(older, "older.result.json");
+  EXPECT_EQ(old.exact_answers, 0);
   EXPECT_EQ(old.steps.at(1).geometric_updates, 0);
   EXPECT_EQ(old.steps.at(1).fixed_point_updates, 0);
   EXPECT_EQ(old.steps.at(1).iterations, 120);

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <functional>
+#include <map>
 #include <string>
 
 #include "test_scenes.h"
@@ -240,6 +241,54 @@ TEST(IterativeSolver, CompactedTowEndsJustTouching) {
               1e-3 * linearised.strain_energy_exact);
 }
 
+/// Each pair's resultant, by its fibres and kind.
+std::map<std::string, double> pair_forces(const Result& r) {
+  std::map<std::string, double> forces;
+  for (const ContactResult& c : r.contacts)
+    forces[c.fibres[0] + "|" + c.fibres[1] + "|" + c.kind] = c.total_force;
+  return forces;
+}
+
+// Under the deformed contact an update of the normals that leaves the sequence of linearised
+// problems within a hundred t_d hands the state to the error estimate's answer, the linearised
+// problem solved exactly with its normals followed. It must be the answer the sequence alone
+// reaches: both runs pass the seed's test in the deformed configuration, and their pair forces
+// differ by no more than the two runs' own estimated force errors together (each the largest
+// |ΔF|/F of a pair against the exact answer, so the difference of two answers is within their sum).
+TEST(IterativeSolver, SettlingTheNormalsExactlyReachesTheSequencesAnswer) {
+  TowOptions tow;
+  tow.fibres = 30;
+  tow.slices = 40;
+  tow.seed = 2;
+  tow.compaction = 0.8;
+  Scene s = generate_tow(tow);
+  s.solver.force_tolerance = 0.0;  // the estimate's answers then only settle the normals
+  SolverOptions options = SolverOptions::from_scene(s);
+  const Result settled = solve_iteratively(s, options);
+  options.exact_answer_below = 0.0;
+  const Result sequence = solve_iteratively(s, options);
+  ASSERT_EQ(settled.status, Status::converged) << settled.message;
+  ASSERT_EQ(sequence.status, Status::converged) << sequence.message;
+  EXPECT_GT(settled.exact_answers, 0);
+  EXPECT_EQ(sequence.exact_answers, 0);
+  const double t = s.overlap_tolerance();
+  for (const Result* r : {&settled, &sequence}) {
+    EXPECT_LT(r->deformed_test.gap_where_pushing, t);
+    EXPECT_LT(r->deformed_test.overlap_where_free, t);
+  }
+  ASSERT_TRUE(settled.error_estimate && sequence.error_estimate);
+  const double allowed = settled.error_estimate->force + sequence.error_estimate->force;
+  auto a = pair_forces(settled), b = pair_forces(sequence);
+  for (const auto& [pair, force] : a) b.emplace(pair, 0.0);
+  for (const auto& [pair, force] : b) a.emplace(pair, 0.0);
+  double largest = 0.0;
+  for (const auto& [pair, force] : b) largest = std::max(largest, force);
+  for (const auto& [pair, force] : a) {
+    const double there = b.at(pair);
+    EXPECT_LE(std::fabs(force - there), allowed * std::max(force, there) + 1e-9 * largest) << pair;
+  }
+}
+
 TEST(IterativeSolver, SolverOptionsValidation) {
   SolverOptions valid;
   valid.overlap_tolerance = 1e-7;
@@ -255,6 +304,7 @@ TEST(IterativeSolver, SolverOptionsValidation) {
       {[](SolverOptions& o) { o.energy_window = 0; }, "energy window must be at least 1"},
       {[](SolverOptions& o) { o.max_iterations = 0; }, "max iterations must be at least 1"},
       {[](SolverOptions& o) { o.margin_factor = 0.0; }, "margin factor must be positive"},
+      {[](SolverOptions& o) { o.exact_answer_below = -1.0; }, "exact_answer_below must not be"},
   };
   for (const auto& [breaks, reason] : broken) {
     SolverOptions o = valid;
