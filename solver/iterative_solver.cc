@@ -186,7 +186,7 @@ class IterativeSolver {
   std::optional<ErrorEstimate> estimate_;  ///< of the state the run stopped in, if made there
   static constexpr int kMaxCorrections = 3;
   int corrections_ = 0;  ///< states that took the estimate's answer for force_tolerance
-  static constexpr int kMaxExactAnswers = 4;
+  static constexpr int kMaxExactAnswers = 2;
   int normal_answers_ = 0;                 ///< estimates asked to settle the normals
   double last_exact_residual_ = INFINITY;  ///< the residual of the update that last asked
   long exact_answers_ = 0;                 ///< states that took the estimate's answer, for either
@@ -424,9 +424,10 @@ std::optional<Termination> IterativeSolver::forces_accurate_enough() {
 // Near the end the pushing set is the answer's, and the error estimate's answer — the linearised
 // problem solved exactly on its pushing set, the crossings and normals following its own displaced
 // fibres until neither moves — lands within t_d in an answer or two. It is taken where an update
-// left a residual above t_d but below `exact_answer_below` times it, at most kMaxExactAnswers
-// times and only while each such residual is smaller than the last: from rougher states the
-// estimate falls back to a projected solve of every candidate, and its answer need not be better.
+// left a residual above t_d but below `exact_answer_below` times it, at most twice a run and only
+// from a smaller residual than the last: where the pushing set still switches the estimate falls
+// back to a projected solve of every candidate, which on compacted tows is costly and takes the
+// residual down little.
 // Frictionless only: with friction the estimate's Newton steps settle only from within about
 // 1e-6 mm. True when the state took the answer.
 bool IterativeSolver::settle_normals_exactly(double residual) {
