@@ -10,6 +10,7 @@
 #include "compliance_operator.h"
 #include "coulomb_answer.h"
 #include "fibre_stiffness.h"
+#include "frictionless_problem.h"
 #include "projected_cg.h"
 #include "superposition.h"
 
@@ -27,38 +28,16 @@ constexpr double kProblemShare = 1e-3;
 /// at round-off and the Newton steps stall.
 constexpr double kFrictionalShare = 1e-2;
 constexpr int kMaxCgSteps = 400;
-constexpr long kMaxProjectedProducts = 300;
+/// The contact problem from the final state is solved on the candidates within this many
+/// residuals of touching (and those its answer brings there), at most kMaxProjectedProducts
+/// products with W a solve.
+constexpr double kNearTouching = 10.0;
+constexpr long kMaxProjectedProducts = 1000;
 /// Deformed contact: at most this many turns of the normals, stopping when they turn by less
 /// than kUnturned.
 constexpr int kGeometricPasses = 4;
 constexpr double kUnturned = 1e-10;
 constexpr double kCgReduction = 1e-8;
-
-/// The force each contact's fibre A receives under normal forces `P` and the contacts' friction.
-std::vector<Eigen::Vector3d> forces_on_a(const std::vector<Contact>& contacts,
-                                         const Eigen::VectorXd& P) {
-  std::vector<Eigen::Vector3d> f(contacts.size());
-  for (std::size_t k = 0; k < contacts.size(); ++k) {
-    const Contact& c = contacts[k];
-    const double p = P[static_cast<Eigen::Index>(k)];
-    f[k] = (c.kind == ContactKind::wall ? p : -p) * c.normal +
-           (p > 0.0 ? c.friction : Eigen::Vector3d::Zero());
-  }
-  return f;
-}
-
-/// Every contact's overlap along its normal under the normal forces `P` (and the scene's loads),
-/// and the exact strain energy ½ΣP·v.
-Eigen::VectorXd overlaps(const Superposition& all, const ContactGeometry& geometry,
-                         const std::vector<Contact>& contacts, const Eigen::VectorXd& P,
-                         double* energy) {
-  std::vector<Eigen::Vector3d> u_a, u_b;
-  all.contact_displacements(contacts, forces_on_a(contacts, P), true, u_a, u_b, energy);
-  Eigen::VectorXd d(static_cast<Eigen::Index>(contacts.size()));
-  for (std::size_t k = 0; k < contacts.size(); ++k)
-    d[static_cast<Eigen::Index>(k)] = geometry.overlap_along_normal(contacts[k], u_a[k], u_b[k]);
-  return d;
-}
 
 /// x with W_AA·x = r on the contacts of `active` (their own list), by conjugate gradients
 /// preconditioned with the fibres' stiffness at their stations.
@@ -102,26 +81,6 @@ bool switching_settled(const Eigen::VectorXd& exact, const Eigen::VectorXd& gap,
     if (!pushes[k] && gap[k] > slack) return false;
   }
   return true;
-}
-
-/// The frictionless contact problem of the candidate list from the final state (forces `P` in,
-/// the answer out), by the projected conjugate gradients of the cg rule, to `tolerance` (mm).
-bool solve_from(const Superposition& all, const std::vector<Fibre>& fibres,
-                const std::vector<Contact>& contacts, const Eigen::VectorXd& d, double tolerance,
-                Eigen::VectorXd& P) {
-  FibreStiffness stiffness(fibres);
-  stiffness.attach(contacts);
-  const ComplianceOperator W(all, contacts);
-  ContactQuadraticProgramme problem;
-  problem.compliance = [&W](const Eigen::VectorXd& x, Eigen::VectorXd& y) { W.apply(x, y); };
-  problem.preconditioner = [&stiffness](const Eigen::VectorXd& r,
-                                        const std::vector<unsigned char>& free,
-                                        Eigen::VectorXd& z) { stiffness.apply(r, free, z); };
-  problem.largest_eigenvalue = W.largest_eigenvalue();
-  Eigen::VectorXd g = -d;
-  const ProjectedCgOutcome outcome =
-      solve_by_projected_cg(problem, P, g, tolerance, kMaxProjectedProducts);
-  return outcome.finite && outcome.residual < tolerance;
 }
 
 /// The worst pair's |ΔF|/F on its resultant, as the comparison measures force errors.
@@ -213,12 +172,15 @@ Eigen::VectorXd linearised_answer(const Scene& scene, const std::vector<Fibre>& 
   }
   ++estimate.passes;
   const double residual = std::max(contact_residual(P, -d), 1e-300);
-  const Eigen::VectorXd gap = overlaps(all, geometry, contacts, exact, nullptr);
+  const Eigen::VectorXd gap = contact_overlaps(all, geometry, contacts, exact);
   if (switching_settled(exact, gap, pushes, kProblemShare * residual)) return exact.cwiseMax(0.0);
   exact = P;
   ++estimate.passes;
   estimate.settled =
-      solve_from(all, fibres, contacts, d, kProblemShare * residual, exact) && estimate.settled;
+      solve_frictionless_problem(scene, fibres, all, geometry, contacts, kNearTouching * residual,
+                                 kProblemShare * residual, kMaxProjectedProducts, d, exact)
+          .settled &&
+      estimate.settled;
   return exact;
 }
 
@@ -227,7 +189,7 @@ Eigen::VectorXd linearised_answer(const Scene& scene, const std::vector<Fibre>& 
 ErrorEstimate estimate_iteration_error(const Scene& scene, const std::vector<Fibre>& fibres,
                                        const ContactDetector& detector,
                                        const std::vector<Contact>& contacts,
-                                       std::vector<Contact>* answer_out) {
+                                       std::vector<Contact>* answer_out, bool answer_only) {
   const ContactGeometry& geometry = detector.geometry();
   const auto start = std::chrono::steady_clock::now();
   ErrorEstimate estimate;
@@ -238,7 +200,7 @@ ErrorEstimate estimate_iteration_error(const Scene& scene, const std::vector<Fib
   Eigen::VectorXd P(n);
   for (Eigen::Index k = 0; k < n; ++k) P[k] = contacts[static_cast<std::size_t>(k)].force;
   double energy = 0.0, exact_energy = 0.0;
-  const Eigen::VectorXd d = overlaps(all, geometry, contacts, P, &energy);
+  const Eigen::VectorXd d = contact_overlaps(all, geometry, contacts, P, &energy);
   std::vector<Contact> answer = contacts;
   const double mu =
       scene.contact.friction_model == FrictionModel::coulomb ? scene.contact.friction : 0.0;
@@ -272,6 +234,7 @@ ErrorEstimate estimate_iteration_error(const Scene& scene, const std::vector<Fib
   std::optional<Superposition> moved;
   const Superposition* beams = &all;
   for (int pass = 0; geometry.deformed() && pass < kGeometricPasses; ++pass) {
+    if (answer_only && !estimate.settled) break;
     const std::vector<Eigen::Vector3d> f = forces_on_a(answer, exact);
     const bool stepped = step_crossings(detector, *beams, f, answer);
     if (stepped && !moved) {
@@ -290,10 +253,10 @@ ErrorEstimate estimate_iteration_error(const Scene& scene, const std::vector<Fib
       turned = std::max(turned, (answer[k].normal - before).norm());
     }
     if (turned < kUnturned && !stepped) break;
-    const Eigen::VectorXd d_turned = overlaps(*beams, geometry, answer, exact, nullptr);
+    const Eigen::VectorXd d_turned = contact_overlaps(*beams, geometry, answer, exact);
     exact = solve(*beams, exact, d_turned);
   }
-  overlaps(*beams, geometry, answer, exact, &exact_energy);
+  contact_overlaps(*beams, geometry, answer, exact, &exact_energy);
   estimate.force = pair_force_error(contacts, P, answer, exact);
   estimate.deflection = deflection_error(scene, all, contacts, P, *beams, answer, exact);
   estimate.energy =

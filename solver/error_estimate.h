@@ -24,7 +24,8 @@ namespace fibrecheck {
 /// contacts near switching — a corrected force below zero, or a free contact it makes overlap —
 /// the pushing set was not yet the answer's, and the contact problem of the candidate list is
 /// solved from the final state instead (projected conjugate gradients, as rule cg, to a thousandth
-/// of the final residual), so that what those contacts add is in the estimate too.
+/// of the final residual, on the candidates near touching: solve_frictionless_problem), so that
+/// what those contacts add is in the estimate too.
 ///
 /// Under the deformed contact the answer's crossings act at the closest points of its own deformed
 /// fibres and its normals point between its own displaced centres: the crossings step there and the
@@ -40,10 +41,14 @@ namespace fibrecheck {
 /// what earlier steps' errors leave in the origins.
 ///
 /// With `answer`, also returns the contacts as the estimate's answer has them (forces and
-/// frictions, and under the deformed contact places, normals and tangents).
+/// frictions, and under the deformed contact places, normals and tangents). With `answer_only`
+/// the caller wants that answer and not the estimate: where a problem on the way does not settle,
+/// the normals are not turned again (the answer will not be taken, and the errors it gives are
+/// rougher).
 ErrorEstimate estimate_iteration_error(const Scene& scene, const std::vector<Fibre>& fibres,
                                        const ContactDetector& detector,
                                        const std::vector<Contact>& contacts,
-                                       std::vector<Contact>* answer = nullptr);
+                                       std::vector<Contact>* answer = nullptr,
+                                       bool answer_only = false);
 
 }  // namespace fibrecheck

@@ -440,7 +440,7 @@ bool IterativeSolver::settle_normals_exactly(double residual) {
   working_set_.leave(state_);
   std::vector<Contact> answer;
   const bool settled =
-      estimate_iteration_error(scene_, fibres_, detector_, state_.contacts, &answer).settled;
+      estimate_iteration_error(scene_, fibres_, detector_, state_.contacts, &answer, true).settled;
   if (settled) {
     take_the_answer(std::move(answer));
     ++exact_answers_;
