@@ -38,17 +38,18 @@ namespace {
 constexpr int kMaxRepeats = 2;
 
 /// The problem restricted to the members (the other candidates held at zero force), from `P` with
-/// overlaps `d`, both of every candidate: the members' forces are replaced by their answer. True
-/// when the solve reached the tolerance.
+/// overlaps `d`, both of every candidate: the members' forces are replaced by their answer, in at
+/// most `max_work` / (members) products with W. True when the solve reached the tolerance.
 bool solve_on_members(const Scene& scene, const std::vector<Fibre>& fibres,
                       const std::vector<Contact>& contacts,
                       const std::vector<unsigned char>& member, const Eigen::VectorXd& d,
-                      double tolerance, long max_products, Eigen::VectorXd& P) {
+                      double tolerance, double max_work, Eigen::VectorXd& P) {
   std::vector<Contact> members;
   std::vector<Eigen::Index> where;
   for (Eigen::Index k = 0; k < P.size(); ++k)
     if (member[k]) members.push_back(contacts[static_cast<std::size_t>(k)]), where.push_back(k);
   const Eigen::Index m = static_cast<Eigen::Index>(where.size());
+  if (m == 0) return true;
   Eigen::VectorXd x(m), g(m);
   for (Eigen::Index i = 0; i < m; ++i) x[i] = P[where[i]], g[i] = -d[where[i]];
   Superposition superposition(fibres, scene);
@@ -62,6 +63,7 @@ bool solve_on_members(const Scene& scene, const std::vector<Fibre>& fibres,
                                         const std::vector<unsigned char>& free,
                                         Eigen::VectorXd& z) { stiffness.apply(r, free, z); };
   problem.largest_eigenvalue = W.largest_eigenvalue();
+  const long max_products = std::max(1L, static_cast<long>(max_work / static_cast<double>(m)));
   const ProjectedCgOutcome outcome = solve_by_projected_cg(problem, x, g, tolerance, max_products);
   for (Eigen::Index i = 0; i < m; ++i) P[where[i]] = x[i];
   return outcome.finite && outcome.residual < tolerance;
@@ -72,14 +74,14 @@ bool solve_on_members(const Scene& scene, const std::vector<Fibre>& fibres,
 FrictionlessProblemOutcome solve_frictionless_problem(
     const Scene& scene, const std::vector<Fibre>& fibres, const Superposition& beams,
     const ContactGeometry& geometry, const std::vector<Contact>& contacts, double reach,
-    double tolerance, long max_products, const Eigen::VectorXd& d, Eigen::VectorXd& P) {
+    double tolerance, double max_work, const Eigen::VectorXd& d, Eigen::VectorXd& P) {
   FrictionlessProblemOutcome outcome;
   std::vector<unsigned char> member(contacts.size());
   for (Eigen::Index k = 0; k < P.size(); ++k) member[k] = P[k] > 0.0 || d[k] > -reach;
   Eigen::VectorXd left = d;
   for (int repeats = 0; repeats <= kMaxRepeats;) {
     outcome.members = std::count(member.begin(), member.end(), 1);
-    if (!solve_on_members(scene, fibres, contacts, member, left, tolerance, max_products, P))
+    if (!solve_on_members(scene, fibres, contacts, member, left, tolerance, max_work, P))
       return outcome;
     left = contact_overlaps(beams, geometry, contacts, P);
     if (contact_residual(P, -left) < tolerance) {

@@ -34,14 +34,15 @@ struct FrictionlessProblemOutcome {
 ///
 /// Why on a subset: on a compacted tow most candidates are far from touching, and a product with W
 /// costs in proportion to the candidates it is made over. So the problem is solved
-/// (by the projected conjugate gradients of rule cg, at most `max_products` products with W a
-/// solve) on the candidates that push or lie within `reach` (mm) of touching; a candidate outside
-/// that the answer makes overlap by more than the tolerance joins, with every other the answer
-/// brings within reach, and the problem is solved again from there, until none does. The answer
-/// is judged by its own overlaps, measured afresh on every candidate.
+/// (by the projected conjugate gradients of rule cg, in products with W whose number times the
+/// candidates they are made over is at most `max_work` a solve) on the candidates that push or lie
+/// within `reach` (mm) of touching; a candidate outside that the answer makes overlap by more than
+/// the tolerance joins, with every other the answer brings within reach, and the problem is solved
+/// again from there, until none does. The answer is judged by its own overlaps, measured afresh on
+/// every candidate.
 FrictionlessProblemOutcome solve_frictionless_problem(
     const Scene& scene, const std::vector<Fibre>& fibres, const Superposition& beams,
     const ContactGeometry& geometry, const std::vector<Contact>& contacts, double reach,
-    double tolerance, long max_products, const Eigen::VectorXd& d, Eigen::VectorXd& P);
+    double tolerance, double max_work, const Eigen::VectorXd& d, Eigen::VectorXd& P);
 
 }  // namespace fibrecheck

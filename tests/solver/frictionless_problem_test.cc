@@ -46,7 +46,7 @@ TEST(FrictionlessProblem, AnswerOnAGrowingSetSolvesTheProblemOfEveryCandidate) {
     SCOPED_TRACE(reach);
     Eigen::VectorXd P = zero;
     const FrictionlessProblemOutcome outcome = solve_frictionless_problem(
-        scene, fibres, beams, detector.geometry(), contacts, reach, tolerance, 100000, d, P);
+        scene, fibres, beams, detector.geometry(), contacts, reach, tolerance, 1e9, d, P);
     ASSERT_TRUE(outcome.settled);
     if (reach == 0.0) {
       EXPECT_GE(outcome.growths, 1);
