@@ -6,7 +6,9 @@
 #include <map>
 #include <optional>
 #include <tuple>
+#include <utility>
 
+#include "compliance_on_subset.h"
 #include "compliance_operator.h"
 #include "coulomb_answer.h"
 #include "fibre_stiffness.h"
@@ -44,14 +46,12 @@ constexpr double kCgReduction = 1e-8;
 /// x with W_AA·x = r on the contacts of `active` (their own list), by conjugate gradients
 /// preconditioned with the fibres' stiffness at their stations.
 Eigen::VectorXd solve_on(const Scene& scene, const std::vector<Fibre>& fibres,
-                         const std::vector<Contact>& active, const Eigen::VectorXd& r) {
-  Superposition superposition(fibres, scene);
-  superposition.attach(active);
-  FibreStiffness stiffness(fibres);
-  stiffness.attach(active);
-  const ComplianceOperator W(superposition, active);
-  const std::vector<unsigned char> all(active.size(), 1);
+                         std::vector<Contact> active, const Eigen::VectorXd& r) {
+  const ComplianceOnSubset subset(scene, fibres, std::move(active));
+  const ComplianceOperator& W = subset.compliance();
+  const FibreStiffness& stiffness = subset.stiffness();
   const Eigen::Index n = r.size();
+  const std::vector<unsigned char> all(static_cast<std::size_t>(n), 1);
   Eigen::VectorXd x = Eigen::VectorXd::Zero(n), res = r, z(n), p, q;
   stiffness.apply(res, all, z);
   p = z;
@@ -168,7 +168,7 @@ Eigen::VectorXd linearised_answer(const Scene& scene, const std::vector<Fibre>& 
   if (!where.empty()) {
     Eigen::VectorXd r(static_cast<Eigen::Index>(where.size()));
     for (std::size_t i = 0; i < where.size(); ++i) r[static_cast<Eigen::Index>(i)] = d[where[i]];
-    const Eigen::VectorXd x = solve_on(scene, fibres, active, r);
+    const Eigen::VectorXd x = solve_on(scene, fibres, std::move(active), r);
     for (std::size_t i = 0; i < where.size(); ++i)
       exact[where[i]] += x[static_cast<Eigen::Index>(i)];
   }

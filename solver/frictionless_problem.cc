@@ -1,9 +1,9 @@
 #include "frictionless_problem.h"
 
 #include <algorithm>
+#include <utility>
 
-#include "compliance_operator.h"
-#include "fibre_stiffness.h"
+#include "compliance_on_subset.h"
 #include "projected_cg.h"
 
 namespace fibrecheck {
@@ -52,11 +52,9 @@ bool solve_on_members(const Scene& scene, const std::vector<Fibre>& fibres,
   if (m == 0) return true;
   Eigen::VectorXd x(m), g(m);
   for (Eigen::Index i = 0; i < m; ++i) x[i] = P[where[i]], g[i] = -d[where[i]];
-  Superposition superposition(fibres, scene);
-  superposition.attach(members);
-  FibreStiffness stiffness(fibres);
-  stiffness.attach(members);
-  const ComplianceOperator W(superposition, members);
+  const ComplianceOnSubset subset(scene, fibres, std::move(members));
+  const ComplianceOperator& W = subset.compliance();
+  const FibreStiffness& stiffness = subset.stiffness();
   ContactQuadraticProgramme problem;
   problem.compliance = [&W](const Eigen::VectorXd& y, Eigen::VectorXd& z) { W.apply(y, z); };
   problem.preconditioner = [&stiffness](const Eigen::VectorXd& r,
