@@ -21,7 +21,6 @@ class ComplianceOnSubset {
   ComplianceOnSubset(const ComplianceOnSubset&) = delete;
   ComplianceOnSubset& operator=(const ComplianceOnSubset&) = delete;
 
-  const std::vector<Contact>& contacts() const { return contacts_; }
   const ComplianceOperator& compliance() const { return compliance_; }
   const FibreStiffness& stiffness() const { return stiffness_; }
 
