@@ -106,6 +106,7 @@ class IterativeSolver {
   bool follows_the_fibres_now(long iteration, double residual);
   void record(long iteration, long before);
   bool just_touching(double t) const;
+  bool coulomb_holds(double t);
   std::optional<Termination> forces_accurate_enough();
   void take_the_answer(std::vector<Contact> answer);
   bool must_measure_again();
@@ -358,6 +359,32 @@ bool IterativeSolver::just_touching(double t) const {
   return residuals_.overlap < t && residuals_.gap_force < t && friction_settled;
 }
 
+// Coulomb's law itself, judged against μN and not against the radii of the last inner problem: a
+// run that stops between two settings of the radii can have its inner problem solved to the last
+// bit while contacts inside their disks still slip by far more than t_d. Where the radii stand a
+// hair short of μP, the contacts on their circles are taken for sticking ones with all their slip:
+// the state is then put on the cone, as a settled fixed point is, and measured again; where that
+// does not hold either, the run ends in the state it stopped in.
+bool IterativeSolver::coulomb_holds(double t) {
+  if (!coulomb_) return true;
+  auto holds = [&] {
+    const FrictionFigures law =
+        friction_figures(state_.contacts, mu_, scene_.contact.friction_model);
+    return law.stick_residual < t && law.slip_residual < t;
+  };
+  if (holds()) return true;
+  const std::vector<Contact> stopped_in = state_.contacts;
+  const Eigen::VectorXd radii = state_.bound;
+  tresca_.onto_coulomb_cone(state_);
+  evaluate(true);
+  if (just_touching(t) && holds()) return true;
+  state_.contacts = stopped_in;
+  state_.bound = radii;
+  state_.forces_gathered = false;
+  evaluate(true);
+  return false;
+}
+
 // The state takes the estimate's answer (forces, frictions, and on the deformed fibres the
 // crossings' places and the normals), with Coulomb friction on the cone, and the rule starts from
 // it afresh.
@@ -539,7 +566,8 @@ Termination IterativeSolver::stalled_within_scene_tolerance(const Termination& v
   const bool stalled =
       verdict.criterion == Criterion::oscillation || verdict.criterion == Criterion::max_iterations;
   const bool t_d_made_smaller = overlap_tolerance_ < t;
-  if (!stalled || !(t_d_made_smaller || at_best_update) || !just_touching(t)) return verdict;
+  if (!stalled || !(t_d_made_smaller || at_best_update) || !just_touching(t) || !coulomb_holds(t))
+    return verdict;
   const char* how =
       verdict.criterion == Criterion::oscillation ? "stalled" : "ran out of iterations";
   std::ostringstream out;
@@ -801,10 +829,15 @@ std::string IterativeSolver::capped_message() const {
         << " mm";
   if (overlap_tolerance_ < options_.overlap_tolerance)
     out << "; its force tolerance had made t_d " << overlap_tolerance_ << " mm";
-  if (coulomb_)
+  if (coulomb_) {
+    const FrictionFigures law =
+        friction_figures(state_.contacts, mu_, scene_.contact.friction_model);
     out << "; the Tresca radii had been set " << tresca_.updates()
         << " times, the last inner problem's stick residual " << tresca_figures_.stick_residual
-        << " mm, slip residual " << tresca_figures_.slip_residual << " mm";
+        << " mm, slip residual " << tresca_figures_.slip_residual
+        << " mm; against muN the stick residual is " << law.stick_residual
+        << " mm, the slip residual " << law.slip_residual << " mm";
+  }
   if (options_.rule != UpdateRule::accelerated)
     out << "; rule accelerated needs far fewer iterations where the compliance is "
            "ill-conditioned (line contacts near supports, tows)";
