@@ -373,15 +373,19 @@ bool IterativeSolver::coulomb_holds(double t) {
     return law.stick_residual < t && law.slip_residual < t;
   };
   if (holds()) return true;
-  const std::vector<Contact> stopped_in = state_.contacts;
-  const Eigen::VectorXd radii = state_.bound;
+  const IterationState stopped_in = state_;
+  const Residuals residuals = residuals_;
+  const FrictionFigures inner = tresca_figures_;
+  const double energy = exact_energy_;
   tresca_.onto_coulomb_cone(state_);
   evaluate(true);
   if (just_touching(t) && holds()) return true;
-  state_.contacts = stopped_in;
-  state_.bound = radii;
-  state_.forces_gathered = false;
-  evaluate(true);
+  state_ = stopped_in;
+  residuals_ = residuals;
+  tresca_figures_ = inner;
+  exact_energy_ = energy;
+  if (detector_.geometry().deformed())
+    superposition_.move_points(state_.contacts, fibres_with_crossings(state_.contacts));
   return false;
 }
 
