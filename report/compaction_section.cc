@@ -193,10 +193,15 @@ void cross_section_figures(ReportPage& page, const StoredCompactionStudy& stored
         const Scene at =
             scene_at_step(stepped, stepped.steps.at(static_cast<std::size_t>(step - 1)));
         const Result result = read_result((folder / file).string());
+        // A run that stopped early keeps the state it stopped in: its status says what it is.
+        std::string stopped;
+        if (result.status != Status::converged)
+          stopped = "; the step did not converge (" + std::string(to_string(result.status)) +
+                    "): the state it stopped in";
         draw_cross_section(
             page, "compaction_section_" + file_name_slug(s.scene) + "_step" + std::to_string(step),
             "A cross-section of " + s.scene + " at step " + std::to_string(step) +
-                " of its load path (" + run_title(r) + ")",
+                " of its load path (" + run_title(r) + stopped + ")",
             at, result);
       }
     }

@@ -283,5 +283,40 @@ TEST_F(ReportFromHarness, ARecordWithoutAFieldTheHarnessWritesIsRefused) {
   }
 }
 
+// A kept state is drawn whatever its step's end: where the step did not converge, the caption of
+// its cross-section says so and names the status (a frictional run can stop at its cap with the
+// state it stopped in kept).
+TEST_F(ReportFromHarness, ACrossSectionOfAStepThatDidNotConvergeSaysSo) {
+  const fs::path copy = *folder_ / "stopped";
+  fs::remove_all(copy);
+  fs::copy(*folder_ / "data", copy, fs::copy_options::recursive);
+  const CompactionStudyScene& tow = run_->compaction.at(0);
+  std::string title;
+  for (const CompactionRun& r : tow.runs)
+    for (const auto& [step, file] : r.sections)
+      if (step == 3 && r.solver == "iterative" && r.friction_model == "coulomb") {
+        const fs::path kept = copy / "study" / "compaction" / file;
+        nlohmann::json j = nlohmann::json::parse(slurp(kept));
+        ASSERT_EQ(j["status"], "converged");
+        j["status"] = "max_iterations";
+        std::ofstream(kept) << j.dump(1);
+        title = "A cross-section of " + tow.scene + " at step 3";
+      }
+  ASSERT_FALSE(title.empty());
+  const fs::path out = *folder_ / "report_stopped";
+  write_report(read_report_data({copy.string()}), out.string());
+  const std::string md = slurp(out / "report.md");
+  const std::size_t at = md.find(title);
+  ASSERT_NE(at, std::string::npos);
+  EXPECT_NE(md.substr(at, 300).find("the step did not converge (max_iterations)"),
+            std::string::npos)
+      << md.substr(at, 300);
+  const fs::path converged = *folder_ / "report_converged";
+  write_report(read_report_data({(*folder_ / "data").string()}), converged.string());
+  const std::string as_run = slurp(converged / "report.md");
+  ASSERT_NE(as_run.find(title), std::string::npos);
+  EXPECT_EQ(as_run.find("; the step did not converge ("), std::string::npos);
+}
+
 }  // namespace
 }  // namespace fibrecheck
