@@ -96,6 +96,8 @@ StepResult step_result(const Scene& stepped, const LoadStep& step, const Result&
   e.iterations = r.iterations;
   e.geometric_updates = r.geometric_updates;
   e.fixed_point_updates = r.friction ? r.friction->fixed_point_updates : 0;
+  e.stick_residual = r.friction ? r.friction->stick_residual : 0.0;
+  e.slip_residual = r.friction ? r.friction->slip_residual : 0.0;
   e.wall_time_s = r.wall_time_s;
   e.status = r.status;
   return e;

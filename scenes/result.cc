@@ -293,6 +293,8 @@ json result_to_json(const Result& r) {
                             {"iterations", step.iterations},
                             {"geometric_updates", step.geometric_updates},
                             {"fixed_point_updates", step.fixed_point_updates},
+                            {"stick_residual", step.stick_residual},
+                            {"slip_residual", step.slip_residual},
                             {"wall_time_s", step.wall_time_s},
                             {"status", to_string(step.status)}});
     }
@@ -435,6 +437,8 @@ Result result_from_json(const json& j, const std::string& source) {
         step.iterations = e.at("iterations").get<long>();
         step.geometric_updates = e.value("geometric_updates", 0L);
         step.fixed_point_updates = e.value("fixed_point_updates", 0L);
+        step.stick_residual = e.value("stick_residual", 0.0);
+        step.slip_residual = e.value("slip_residual", 0.0);
         step.wall_time_s = e.at("wall_time_s").get<double>();
         step.status = parse_status(e.at("status").get<std::string>(), source);
         r.steps.push_back(std::move(step));

@@ -97,6 +97,9 @@ struct StepResult {
   long iterations = 0;
   long geometric_updates = 0;    ///< the step's updates of the normals (deformed contact)
   long fixed_point_updates = 0;  ///< Coulomb friction: the step's as the result's `friction` counts
+  /// mm, Coulomb's law on the step's answer as the result's `friction` reports it (0 without
+  /// friction): the largest slip at a sticking point, and against the friction at a slipping one.
+  double stick_residual = 0.0, slip_residual = 0.0;
   double wall_time_s = 0.0;
   Status status = Status::converged;
 };

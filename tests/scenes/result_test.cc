@@ -48,6 +48,8 @@ TEST(Result, StepsKeepTheirUpdatesAndOlderStepsReadAsZero) {
   step.iterations = 120;
   step.geometric_updates = 7;
   step.fixed_point_updates = 3;
+  step.stick_residual = 2.5e-9;
+  step.slip_residual = 1.5e-18;
   r.steps = {step, step};
   r.steps[1].geometric_updates = 11;
   r.exact_answers = 2;
@@ -59,11 +61,15 @@ TEST(Result, StepsKeepTheirUpdatesAndOlderStepsReadAsZero) {
   EXPECT_EQ(back.steps[0].geometric_updates, 7);
   EXPECT_EQ(back.steps[1].geometric_updates, 11);
   EXPECT_EQ(back.steps[1].fixed_point_updates, 3);
+  EXPECT_EQ(back.steps[1].stick_residual, 2.5e-9);
+  EXPECT_EQ(back.steps[1].slip_residual, 1.5e-18);
   nlohmann::json older = result_to_json(r);
   for (nlohmann::json& e : older["steps"]) {
     ASSERT_TRUE(e.contains("geometric_updates") && e.contains("fixed_point_updates"));
     e.erase("geometric_updates");
     e.erase("fixed_point_updates");
+    e.erase("stick_residual");
+    e.erase("slip_residual");
   }
   ASSERT_TRUE(older.contains("exact_answers"));
   older.erase("exact_answers");
@@ -71,6 +77,7 @@ TEST(Result, StepsKeepTheirUpdatesAndOlderStepsReadAsZero) {
   EXPECT_EQ(old.exact_answers, 0);
   EXPECT_EQ(old.steps.at(1).geometric_updates, 0);
   EXPECT_EQ(old.steps.at(1).fixed_point_updates, 0);
+  EXPECT_EQ(old.steps.at(1).stick_residual, 0.0);
   EXPECT_EQ(old.steps.at(1).iterations, 120);
 }
 

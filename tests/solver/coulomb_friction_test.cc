@@ -90,8 +90,11 @@ TEST(CoulombFriction, CompactedTowConvergesEveryStepInBothGeometries) {
     ASSERT_EQ(r.status, Status::converged) << r.message;
     ASSERT_EQ(r.steps.size(), 12u);
     ASSERT_TRUE(r.friction.has_value());
+    const double t = s.overlap_tolerance();
     for (const StepResult& step : r.steps) {
       EXPECT_EQ(step.status, Status::converged);
+      EXPECT_LT(step.stick_residual, t) << step.compaction;
+      EXPECT_LT(step.slip_residual, t) << step.compaction;
       // A step whose fibres push has set its radii at least once, and under the deformed
       // geometry updated its normals; linearised normals never follow.
       const bool loaded = step.strain_energy > 0.0;
@@ -101,8 +104,9 @@ TEST(CoulombFriction, CompactedTowConvergesEveryStepInBothGeometries) {
       EXPECT_TRUE(linearised || !loaded || step.geometric_updates > 0) << step.compaction;
     }
     EXPECT_EQ(r.steps.back().fixed_point_updates, r.friction->fixed_point_updates);
+    EXPECT_EQ(r.steps.back().stick_residual, r.friction->stick_residual);
+    EXPECT_EQ(r.steps.back().slip_residual, r.friction->slip_residual);
     EXPECT_EQ(r.steps.back().geometric_updates, r.geometric_updates);
-    const double t = s.overlap_tolerance();
     EXPECT_LT(r.max_overlap, t);
     EXPECT_LT(r.gap_force_residual, t);
     EXPECT_LT(r.friction->stick_residual, t);
