@@ -107,6 +107,9 @@ class IterativeSolver {
   void record(long iteration, long before);
   bool just_touching(double t) const;
   bool coulomb_holds(double t);
+  FrictionFigures coulomb_figures() const {
+    return friction_figures(state_.contacts, mu_, scene_.contact.friction_model);
+  }
   std::optional<Termination> forces_accurate_enough();
   void take_the_answer(std::vector<Contact> answer);
   bool must_measure_again();
@@ -368,8 +371,7 @@ bool IterativeSolver::just_touching(double t) const {
 bool IterativeSolver::coulomb_holds(double t) {
   if (!coulomb_) return true;
   auto holds = [&] {
-    const FrictionFigures law =
-        friction_figures(state_.contacts, mu_, scene_.contact.friction_model);
+    const FrictionFigures law = coulomb_figures();
     return law.stick_residual < t && law.slip_residual < t;
   };
   if (holds()) return true;
@@ -834,8 +836,7 @@ std::string IterativeSolver::capped_message() const {
   if (overlap_tolerance_ < options_.overlap_tolerance)
     out << "; its force tolerance had made t_d " << overlap_tolerance_ << " mm";
   if (coulomb_) {
-    const FrictionFigures law =
-        friction_figures(state_.contacts, mu_, scene_.contact.friction_model);
+    const FrictionFigures law = coulomb_figures();
     out << "; the Tresca radii had been set " << tresca_.updates()
         << " times, the last inner problem's stick residual " << tresca_figures_.stick_residual
         << " mm, slip residual " << tresca_figures_.slip_residual
