@@ -332,6 +332,42 @@ Table cost_table(const CompactionStudyScene& s) {
   return t;
 }
 
+/// Coulomb's law on each step's answer, per run with Coulomb friction: what lets a reader check
+/// that a curve's points are answers of the frictional problem and not states a fixed point left
+/// unsettled. None where no run has Coulomb friction.
+std::optional<Table> coulomb_table(const CompactionStudyScene& s) {
+  std::vector<const CompactionRun*> runs;
+  for (const CompactionRun& r : s.runs)
+    if (r.friction_model == "coulomb") runs.push_back(&r);
+  if (runs.empty()) return std::nullopt;
+  Table t;
+  t.label = "compaction_coulomb_" + file_name_slug(s.scene);
+  t.caption = "Coulomb's law on the answer of each step of " + s.scene +
+              "'s load path, per run with Coulomb friction: the largest slip at a contact that "
+              "sticks (|F| < μN), then the largest slip not along its friction at one that "
+              "slips, in mm. A converged step leaves both within the scene's overlap tolerance; "
+              "a step that did not converge gives its status before what its state left "
+              "(records kept before these were measured show –)." +
+              kColumnKey;
+  t.header = {"Step", "Vf"};
+  for (const CompactionRun* r : runs) t.header.push_back(column_title(*r));
+  for (std::size_t k = 0; k < steps_of(s); ++k) {
+    std::vector<std::string> row = {std::to_string(k + 1), ""};
+    for (const CompactionRun* r : runs) {
+      if (k >= r->points.size()) {
+        row.push_back("");
+        continue;
+      }
+      const CompactionPoint& p = r->points[k];
+      row[1] = fixed3(p.fibre_volume_fraction);
+      const std::string residuals = sci(p.stick_residual) + " / " + sci(p.slip_residual);
+      row.push_back(p.status == "converged" ? residuals : p.status + ": " + residuals);
+    }
+    t.rows.push_back(row);
+  }
+  return t;
+}
+
 Table agreement_table() {
   Table agreement;
   agreement.label = "compaction_agreement";
@@ -433,6 +469,8 @@ void write_compaction_section(ReportPage& page, const std::vector<StoredCompacti
   for (const StoredCompactionStudy& stored : studies)
     if (auto points = points_table(stored.study)) page.table(*points);
   page.table(cost_table(studies.back().study));
+  for (const StoredCompactionStudy& stored : studies)
+    if (auto coulomb = coulomb_table(stored.study)) page.table(*coulomb);
 }
 
 }  // namespace fibrecheck

@@ -106,6 +106,8 @@ std::vector<CompactionPoint> points_of(const Result& result) {
     p.iterations = st.iterations;
     p.geometric_updates = st.geometric_updates;
     p.fixed_point_updates = st.fixed_point_updates;
+    p.stick_residual = st.stick_residual;
+    p.slip_residual = st.slip_residual;
     p.time_s = st.wall_time_s;
     p.status = to_string(st.status);
     points.push_back(p);

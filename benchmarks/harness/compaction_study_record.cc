@@ -75,6 +75,8 @@ json to_json(const CompactionPoint& p) {
           {"iterations", p.iterations},
           {"geometric_updates", p.geometric_updates},
           {"fixed_point_updates", p.fixed_point_updates},
+          {"stick_residual", number_or_null(p.stick_residual)},
+          {"slip_residual", number_or_null(p.slip_residual)},
           {"wall_time_s", p.time_s},
           {"status", p.status}};
 }
@@ -90,6 +92,9 @@ void from_json(const json& j, CompactionPoint& p) {
   p.iterations = j.at("iterations");
   p.geometric_updates = j.value("geometric_updates", 0L);  // 0 in records kept before them
   p.fixed_point_updates = j.value("fixed_point_updates", 0L);
+  // NaN in records kept before them.
+  p.stick_residual = j.contains("stick_residual") ? number_from(j["stick_residual"]) : NAN;
+  p.slip_residual = j.contains("slip_residual") ? number_from(j["slip_residual"]) : NAN;
   p.time_s = j.at("wall_time_s");
   p.status = j.at("status");
 }

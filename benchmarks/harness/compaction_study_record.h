@@ -24,6 +24,10 @@ struct CompactionPoint {
   long geometric_updates = 0;    ///< the step's updates of the normals
   long fixed_point_updates = 0;  ///< the step's, as its result's `friction` counts them
   std::string status;
+  /// Coulomb's law on the step's answer (mm): the largest slip where a contact sticks, and the
+  /// largest slip not along its friction where it slips (0 without friction, NaN in records kept
+  /// before they were).
+  double stick_residual = 0, slip_residual = 0;
 };
 
 /// One solver's load path.

@@ -186,6 +186,41 @@ TEST(Report, TheCompactionCostTableCountsTheUpdatesOfEachStep) {
   EXPECT_NE(md.find("| 2 | 0.600 | 2000 (2.5 s) / 7, 3 |"), std::string::npos) << md;
 }
 
+// The compaction section gives Coulomb's law on each step's answer for the runs with Coulomb
+// friction only, with the status of a step that did not converge before what its state left.
+TEST(Report, TheCompactionSectionGivesCoulombsResidualsOfEachStep) {
+  CompactionStudyScene study;
+  study.scene = "tow", study.youngs_modulus = 80000;
+  for (const char* model : {"none", "coulomb"}) {
+    CompactionRun run;
+    run.solver = "iterative", run.rule = "accelerated", run.status = "converged";
+    run.friction_model = model, run.mu = std::string(model) == "none" ? 0.0 : 0.2;
+    for (int step : {1, 2}) {
+      CompactionPoint p;
+      p.step = step, p.compaction = 1.0 - 0.1 * step, p.fibre_volume_fraction = 0.4 + 0.1 * step;
+      p.pressure = 1e-3 * step, p.iterations = 1000, p.time_s = 1.0;
+      p.status = step == 2 && run.mu > 0.0 ? "max_iterations" : "converged";
+      if (run.mu > 0.0) p.stick_residual = 3e-9 * step, p.slip_residual = 4e-9 * step;
+      run.points.push_back(p);
+    }
+    study.runs.push_back(run);
+  }
+  StoredCompactionStudy stored;
+  stored.study = study;
+  ReportData data;
+  data.compaction_studies = {stored};
+  const std::string md = markdown_without_figures(data, "report_compaction_coulomb");
+  EXPECT_NE(md.find("| Step | Vf | it. μ 0.2 Coulomb |"), std::string::npos) << md;
+  EXPECT_NE(md.find("| 1 | 0.500 | 3.00e-09 / 4.00e-09 |"), std::string::npos) << md;
+  EXPECT_NE(md.find("| 2 | 0.600 | max_iterations: 6.00e-09 / 8.00e-09 |"), std::string::npos)
+      << md;
+  study.runs.pop_back();
+  data.compaction_studies.front().study = study;
+  EXPECT_EQ(markdown_without_figures(data, "report_compaction_frictionless")
+                .find("Coulomb's law on the answer of each step"),
+            std::string::npos);
+}
+
 TEST(Report, AFolderThatDoesNotExistIsBadInput) {
   EXPECT_THROW(read_report_data({"/nonexistent/folder"}), InputError);
 }

@@ -59,7 +59,8 @@ TEST(CompactionFit, TooFewPointsGiveNoFit) {
 
 /// A solver that returns a load path whose mean wall pressure follows van Wyk's law in Vf (each
 /// wall p and 3p, mean 2p), converging on every step but the last when `fail_last`; step k (from
-/// 0) updated its normals k + 2 times and its Tresca radii k times.
+/// 0) updated its normals k + 2 times and its Tresca radii k times, and left Coulomb's law broken
+/// by (k + 1)·1e-9 mm at sticking contacts and twice that at slipping ones.
 Result made_up(const Scene& s, double offset, bool fail_last) {
   Result r;
   r.scene = s.name;
@@ -77,6 +78,8 @@ Result made_up(const Scene& s, double offset, bool fail_last) {
     st.strain_energy = 1e-6 * (k + 1);
     st.geometric_updates = static_cast<long>(k) + 2;
     st.fixed_point_updates = static_cast<long>(k);
+    st.stick_residual = 1e-9 * static_cast<double>(k + 1);
+    st.slip_residual = 2e-9 * static_cast<double>(k + 1);
     st.status = fail_last && k + 1 == s.steps.size() ? Status::max_iterations : Status::converged;
     r.steps.push_back(st);
   }
@@ -143,9 +146,11 @@ TEST(CompactionStudy, WritesCurvesFitsAndAgreement) {
   EXPECT_TRUE(first["van_wyk"].contains("k") && first["van_wyk"].contains("vf0") &&
               first["van_wyk"].contains("r2"));
   EXPECT_TRUE(first["toll"].contains("n"));
-  // Each point keeps its step's updates.
+  // Each point keeps its step's updates and Coulomb's residuals.
   EXPECT_EQ(it.points.at(3).geometric_updates, 5);
   EXPECT_EQ(it.points.at(3).fixed_point_updates, 3);
+  EXPECT_EQ(it.points.at(3).stick_residual, 4e-9);
+  EXPECT_EQ(it.points.at(3).slip_residual, 8e-9);
   // Run again: every point comes from disk, with its updates.
   solvers.iterative = [](const Scene&) -> Result { throw std::runtime_error("not again"); };
   std::vector<CompactionStudyScene> again;
@@ -153,6 +158,8 @@ TEST(CompactionStudy, WritesCurvesFitsAndAgreement) {
   ASSERT_EQ(again.size(), 1u);
   EXPECT_EQ(again[0].runs.at(0).points.at(3).geometric_updates, 5);
   EXPECT_EQ(again[0].runs.at(0).points.at(3).fixed_point_updates, 3);
+  EXPECT_EQ(again[0].runs.at(0).points.at(3).stick_residual, 4e-9);
+  EXPECT_EQ(again[0].runs.at(0).points.at(3).slip_residual, 8e-9);
 }
 
 // With friction: the iterative solver with Coulomb's law and with the seed's rule, and the

@@ -112,7 +112,8 @@ TEST(StudyRecords, TheCompactionStudyKeepsItsFieldNames) {
   r.mu = 0.2;
   r.friction_model = "coulomb";
   r.status = "converged";
-  r.points.push_back({1, 0.9, 1.0, 0.43, 1e-3, 2e-6, 3.5, 0.01, 120, 7, 3, "converged"});
+  r.points.push_back(
+      {1, 0.9, 1.0, 0.43, 1e-3, 2e-6, 3.5, 0.01, 120, 7, 3, "converged", 4e-9, 5e-9});
   r.sections.emplace_back(1, "tow/iterative_mu0_2_coulomb.step1.result.json");
   r.van_wyk = fit_power_law({0.42, 0.45}, {1e-3, 2e-3}, 80000, 3.0);
   CompactionStudyScene s;
@@ -130,7 +131,8 @@ TEST(StudyRecords, TheCompactionStudyKeepsItsFieldNames) {
   EXPECT_EQ(keys(run["points"][0]),
             (Keys{"step", "compaction", "load_factor", "fibre_volume_fraction", "pressure_MPa",
                   "strain_energy", "contacts_per_fibre", "iterations", "geometric_updates",
-                  "fixed_point_updates", "wall_time_s", "status"}));
+                  "fixed_point_updates", "stick_residual", "slip_residual", "wall_time_s",
+                  "status"}));
   EXPECT_EQ(keys(run["van_wyk"]), (Keys{"k", "vf0", "r2", "points"}));
   EXPECT_EQ(keys(run["toll"]), (Keys{"k", "vf0", "r2", "points", "n"}));
   EXPECT_EQ(keys(j["agreement"][0]),
@@ -139,6 +141,12 @@ TEST(StudyRecords, TheCompactionStudyKeepsItsFieldNames) {
   const CompactionStudyScene back = j.get<CompactionStudyScene>();
   EXPECT_EQ(back.runs.at(0).label(), "iterative_mu0_2_coulomb");
   EXPECT_EQ(back.runs.at(0).sections, r.sections);
+  EXPECT_EQ(back.runs.at(0).points.at(0).stick_residual, 4e-9);
+  EXPECT_EQ(back.runs.at(0).points.at(0).slip_residual, 5e-9);
+  nlohmann::json older = j;  // a record kept before Coulomb's residuals were
+  older["runs"][0]["points"][0].erase("stick_residual");
+  older["runs"][0]["points"][0].erase("slip_residual");
+  EXPECT_TRUE(std::isnan(older.get<CompactionStudyScene>().runs.at(0).points.at(0).stick_residual));
   EXPECT_EQ(back.runs.at(0).van_wyk.k, r.van_wyk.k);
   EXPECT_EQ(back.runs.at(0).van_wyk.n, 3.0);
   EXPECT_FALSE(back.runs.at(0).toll.valid);
