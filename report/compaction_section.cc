@@ -334,7 +334,8 @@ Table cost_table(const CompactionStudyScene& s) {
 
 /// Coulomb's law on each step's answer, per run with Coulomb friction: what lets a reader check
 /// that a curve's points are answers of the frictional problem and not states a fixed point left
-/// unsettled. None where no run has Coulomb friction.
+/// unsettled. On the steps where some run has contacts that carry force or did not converge; none
+/// where no run has Coulomb friction.
 std::optional<Table> coulomb_table(const CompactionStudyScene& s) {
   std::vector<const CompactionRun*> runs;
   for (const CompactionRun& r : s.runs)
@@ -343,7 +344,8 @@ std::optional<Table> coulomb_table(const CompactionStudyScene& s) {
   Table t;
   t.label = "compaction_coulomb_" + file_name_slug(s.scene);
   t.caption = "Coulomb's law on the answer of each step of " + s.scene +
-              "'s load path, per run with Coulomb friction: the largest slip at a contact that "
+              "'s load path where contacts carry force, per run with Coulomb friction: the largest "
+              "slip at a contact that "
               "sticks (|F| < μN), then the largest slip not along its friction at one that "
               "slips, in mm. A converged step leaves both within the scene's overlap tolerance; "
               "a step that did not converge gives its status before what its state left "
@@ -353,6 +355,7 @@ std::optional<Table> coulomb_table(const CompactionStudyScene& s) {
   for (const CompactionRun* r : runs) t.header.push_back(column_title(*r));
   for (std::size_t k = 0; k < steps_of(s); ++k) {
     std::vector<std::string> row = {std::to_string(k + 1), ""};
+    bool shown = false;
     for (const CompactionRun* r : runs) {
       if (k >= r->points.size()) {
         row.push_back("");
@@ -360,10 +363,12 @@ std::optional<Table> coulomb_table(const CompactionStudyScene& s) {
       }
       const CompactionPoint& p = r->points[k];
       row[1] = fixed3(p.fibre_volume_fraction);
+      const bool converged = p.status == "converged";
       const std::string residuals = sci(p.stick_residual) + " / " + sci(p.slip_residual);
-      row.push_back(p.status == "converged" ? residuals : p.status + ": " + residuals);
+      row.push_back(converged ? residuals : p.status + ": " + residuals);
+      shown |= !converged || p.contacts_per_fibre > 0.0;
     }
-    t.rows.push_back(row);
+    if (shown) t.rows.push_back(row);
   }
   return t;
 }

@@ -218,7 +218,8 @@ std::string latex(const Table& t) {
   std::ostringstream out;
   out << "\\begin{table}[htbp]\n  \\centering\n  \\caption{" << latex_text(t.caption)
       << "}\n  \\label{tab:" << t.label
-      << "}\n  \\begin{adjustbox}{max width=\\linewidth}\n  \\begin{tabular}{";
+      // A caption above a table has no space below it of its own: the top rule would touch it.
+      << "}\n  \\vspace{0.6ex}\n  \\begin{adjustbox}{max width=\\linewidth}\n  \\begin{tabular}{";
   for (std::size_t i = 0; i < t.header.size(); ++i) out << (is_numeric_column(t, i) ? "r" : "l");
   out << "}\n    \\toprule\n    ";
   for (std::size_t i = 0; i < t.header.size(); ++i)
