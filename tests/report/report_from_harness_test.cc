@@ -185,8 +185,9 @@ TEST_F(ReportFromHarness, EveryStudyIsReadAndReported) {
   const fs::path out = *folder_ / "report";
   const ReportSummary summary = write_report(data, out.string());
   // Comparison, slices, speed-up, tolerance outcomes, effectivity, step sweep, stiffness,
-  // catalogue, compaction fits, agreement, points and cost, the friction rules, scale.
-  EXPECT_EQ(summary.tables, 14);
+  // catalogue, compaction fits, agreement, points, cost and Coulomb's law per step, the friction
+  // rules, scale.
+  EXPECT_EQ(summary.tables, 15);
   EXPECT_TRUE(summary.missing.empty()) << summary.missing.front();
   const std::string md = slurp(out / "report.md");
   for (const char* section :
@@ -237,6 +238,15 @@ TEST_F(ReportFromHarness, TheTablesHoldWhatTheStudiesReturned) {
     ASSERT_EQ(r.points.size(), tow.runs.front().points.size()) << r.label();
     const CompactionPoint& q = r.points.back();
     row += " | " + (q.status == "converged" ? sci(q.pressure) : q.status);
+  }
+  EXPECT_NE(md.find(row + " |"), std::string::npos) << row;
+  // Coulomb's law on the last step's answer, per run with Coulomb friction, in one row.
+  row = "| " + std::to_string(first.step) + " | " + fixed3(first.fibre_volume_fraction);
+  for (const CompactionRun& r : tow.runs) {
+    if (r.friction_model != "coulomb") continue;
+    const CompactionPoint& q = r.points.back();
+    row += " | " + std::string(q.status == "converged" ? "" : q.status + ": ") +
+           sci(q.stick_residual) + " / " + sci(q.slip_residual);
   }
   EXPECT_NE(md.find(row + " |"), std::string::npos) << row;
   EXPECT_NE(md.find("| iterative, μ = 0.2 (Coulomb) | "), std::string::npos);
