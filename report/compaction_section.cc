@@ -344,12 +344,11 @@ std::optional<Table> coulomb_table(const CompactionStudyScene& s) {
   Table t;
   t.label = "compaction_coulomb_" + file_name_slug(s.scene);
   t.caption = "Coulomb's law on the answer of each step of " + s.scene +
-              "'s load path where contacts carry force, per run with Coulomb friction: the largest "
-              "slip at a contact that "
-              "sticks (|F| < μN), then the largest slip not along its friction at one that "
-              "slips, in mm. A converged step leaves both within the scene's overlap tolerance; "
-              "a step that did not converge gives its status before what its state left "
-              "(records kept before these were measured show –)." +
+              "'s load path where contacts carry force, per run with Coulomb friction: the "
+              "largest slip at a contact that sticks (|F| < μN), then the largest slip not along "
+              "its friction at one that slips, in mm. A converged step leaves both within the "
+              "scene's overlap tolerance; a step that did not converge gives its status before "
+              "what its state left (records kept before these were measured show –)." +
               kColumnKey;
   t.header = {"Step", "Vf"};
   for (const CompactionRun* r : runs) t.header.push_back(column_title(*r));
