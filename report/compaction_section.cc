@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <functional>
 #include <optional>
 #include <sstream>
 
@@ -264,6 +265,41 @@ std::size_t steps_of(const CompactionStudyScene& s) {
   return steps;
 }
 
+/// The runs of `s` that `keep` picks.
+template <class Keep>
+std::vector<const CompactionRun*> runs_of(const CompactionStudyScene& s, Keep keep) {
+  std::vector<const CompactionRun*> runs;
+  for (const CompactionRun& r : s.runs)
+    if (keep(r)) runs.push_back(&r);
+  return runs;
+}
+
+/// A table of the steps of `s`'s load path, a column per run of `runs` (a cell `cell(point)`,
+/// empty where the run had stopped before the step), on the steps where `shown(point)` holds for
+/// some run; every step where `shown` is empty.
+template <class Cell>
+void fill_step_table(Table& t, const CompactionStudyScene& s,
+                     const std::vector<const CompactionRun*>& runs, Cell cell,
+                     const std::function<bool(const CompactionPoint&)>& shown) {
+  t.header = {"Step", "Vf"};
+  for (const CompactionRun* r : runs) t.header.push_back(column_title(*r));
+  for (std::size_t k = 0; k < steps_of(s); ++k) {
+    std::vector<std::string> row = {std::to_string(k + 1), ""};
+    bool any = !shown;
+    for (const CompactionRun* r : runs) {
+      if (k >= r->points.size()) {
+        row.push_back("");
+        continue;
+      }
+      const CompactionPoint& p = r->points[k];
+      row[1] = fixed3(p.fibre_volume_fraction);
+      row.push_back(cell(p));
+      if (shown) any |= shown(p);
+    }
+    if (any) t.rows.push_back(row);
+  }
+}
+
 /// The points the curves of `s` are drawn and fitted from: per step Vf and each run's pressure
 /// (the status where the step did not converge, empty where the run had stopped before it), on
 /// the steps where some run loads the walls or fails. None where no run loads the walls.
@@ -275,24 +311,10 @@ std::optional<Table> points_table(const CompactionStudyScene& s) {
               "the walls, per run; a status where the step did not converge, nothing where the "
               "run had stopped before it." +
               kColumnKey;
-  t.header = {"Step", "Vf"};
-  for (const CompactionRun& r : s.runs) t.header.push_back(column_title(r));
-  for (std::size_t k = 0; k < steps_of(s); ++k) {
-    std::vector<std::string> row = {std::to_string(k + 1), ""};
-    bool shown = false;
-    for (const CompactionRun& r : s.runs) {
-      if (k >= r.points.size()) {
-        row.push_back("");
-        continue;
-      }
-      const CompactionPoint& p = r.points[k];
-      row[1] = fixed3(p.fibre_volume_fraction);
-      const bool converged = p.status == "converged";
-      row.push_back(converged ? sci(p.pressure) : p.status);
-      shown |= !converged || p.pressure > 0.0;
-    }
-    if (shown) t.rows.push_back(row);
-  }
+  fill_step_table(
+      t, s, runs_of(s, [](const CompactionRun&) { return true; }),
+      [](const CompactionPoint& p) { return p.status == "converged" ? sci(p.pressure) : p.status; },
+      [](const CompactionPoint& p) { return p.status != "converged" || p.pressure > 0.0; });
   if (t.rows.empty()) return std::nullopt;
   return t;
 }
@@ -308,27 +330,15 @@ Table cost_table(const CompactionStudyScene& s) {
               "the normals to the displaced fibres and of the Tresca radii (records kept before "
               "these were counted show none)." +
               kColumnKey;
-  t.header = {"Step", "Vf"};
-  for (const CompactionRun& r : s.runs)
-    if (r.solver == "iterative") t.header.push_back(column_title(r));
-  for (std::size_t k = 0; k < steps_of(s); ++k) {
-    std::vector<std::string> row = {std::to_string(k + 1), ""};
-    for (const CompactionRun& r : s.runs) {
-      if (r.solver != "iterative") continue;
-      if (k >= r.points.size()) {
-        row.push_back("");
-        continue;
-      }
-      const CompactionPoint& p = r.points[k];
-      row[1] = fixed3(p.fibre_volume_fraction);
-      std::string cell = std::to_string(p.iterations) + " (" + seconds(p.time_s) + " s)";
-      if (p.geometric_updates > 0 || p.fixed_point_updates > 0)
-        cell += " / " + std::to_string(p.geometric_updates) + ", " +
-                std::to_string(p.fixed_point_updates);
-      row.push_back(cell);
-    }
-    t.rows.push_back(row);
-  }
+  auto cell = [](const CompactionPoint& p) {
+    std::string cost = std::to_string(p.iterations) + " (" + seconds(p.time_s) + " s)";
+    if (p.geometric_updates > 0 || p.fixed_point_updates > 0)
+      cost += " / " + std::to_string(p.geometric_updates) + ", " +
+              std::to_string(p.fixed_point_updates);
+    return cost;
+  };
+  fill_step_table(t, s, runs_of(s, [](const CompactionRun& r) { return r.solver == "iterative"; }),
+                  cell, [](const CompactionPoint&) { return true; });
   return t;
 }
 
@@ -337,9 +347,8 @@ Table cost_table(const CompactionStudyScene& s) {
 /// unsettled. On the steps where some run has contacts that carry force or did not converge; none
 /// where no run has Coulomb friction.
 std::optional<Table> coulomb_table(const CompactionStudyScene& s) {
-  std::vector<const CompactionRun*> runs;
-  for (const CompactionRun& r : s.runs)
-    if (r.friction_model == "coulomb") runs.push_back(&r);
+  const std::vector<const CompactionRun*> runs =
+      runs_of(s, [](const CompactionRun& r) { return r.friction_model == "coulomb"; });
   if (runs.empty()) return std::nullopt;
   Table t;
   t.label = "compaction_coulomb_" + file_name_slug(s.scene);
@@ -350,25 +359,15 @@ std::optional<Table> coulomb_table(const CompactionStudyScene& s) {
               "scene's overlap tolerance; a step that did not converge gives its status before "
               "what its state left (records kept before these were measured show –)." +
               kColumnKey;
-  t.header = {"Step", "Vf"};
-  for (const CompactionRun* r : runs) t.header.push_back(column_title(*r));
-  for (std::size_t k = 0; k < steps_of(s); ++k) {
-    std::vector<std::string> row = {std::to_string(k + 1), ""};
-    bool shown = false;
-    for (const CompactionRun* r : runs) {
-      if (k >= r->points.size()) {
-        row.push_back("");
-        continue;
-      }
-      const CompactionPoint& p = r->points[k];
-      row[1] = fixed3(p.fibre_volume_fraction);
-      const bool converged = p.status == "converged";
-      const std::string residuals = sci(p.stick_residual) + " / " + sci(p.slip_residual);
-      row.push_back(converged ? residuals : p.status + ": " + residuals);
-      shown |= !converged || p.contacts_per_fibre > 0.0;
-    }
-    if (shown) t.rows.push_back(row);
-  }
+  fill_step_table(
+      t, s, runs,
+      [](const CompactionPoint& p) {
+        const std::string residuals = sci(p.stick_residual) + " / " + sci(p.slip_residual);
+        return p.status == "converged" ? residuals : p.status + ": " + residuals;
+      },
+      [](const CompactionPoint& p) {
+        return p.status != "converged" || p.contacts_per_fibre > 0.0;
+      });
   return t;
 }
 
