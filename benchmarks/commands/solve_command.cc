@@ -5,13 +5,13 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <iomanip>
 #include <iostream>
 #include <sstream>
 
 #include "exit_codes.h"
 #include "input_error.h"
 #include "iterative_solver.h"
+#include "progress_line.h"
 #include "result.h"
 #include "scene.h"
 #include "slicing_estimate.h"
@@ -20,28 +20,6 @@
 namespace fibrecheck {
 
 namespace {
-
-/// Progress on long runs: a line every few seconds (overwritten in place on a terminal).
-std::function<void(const IterationProgress&)> progress_printer(bool terminal) {
-  return [terminal](const IterationProgress& p) {
-    std::ostringstream line;
-    line.precision(3);
-    line << "  ";
-    if (p.steps > 0) line << "step " << p.step << " of " << p.steps << ", ";
-    line << "iteration " << p.iteration << "/" << p.max_iterations << ", " << p.contacts
-         << " candidate contacts, overlap " << p.overlap_residual << " mm, gap-force "
-         << p.gap_force_residual << " mm (tolerance " << p.tolerance;
-    if (p.working_tolerance < p.tolerance) line << ", now " << p.working_tolerance;
-    line << ")";
-    if (p.normal_updates > 0) line << ", " << p.normal_updates << " updates of the normals";
-    if (p.coulomb) line << ", " << p.radius_updates << " of the Tresca radii";
-    line << ", " << std::fixed << std::setprecision(1) << p.elapsed_s << " s";
-    if (terminal)
-      std::cerr << "\r" << line.str() << "\033[K" << std::flush;
-    else
-      std::cerr << line.str() << "\n";
-  };
-}
 
 std::string result_path_for(const SolveArguments& args, const Scene& scene) {
   if (!args.out.empty()) return args.out;
@@ -162,7 +140,7 @@ int run_solve(const SolveArguments& args) {
                 << " walls; rule " << to_string(o.rule) << ", slices " << scene.contact.slices
                 << ", overlap tolerance " << o.overlap_tolerance << " mm, max iterations "
                 << o.max_iterations << std::endl;
-      o.progress = progress_printer(terminal);
+      o.progress = progress_printer(terminal, "  ");
       o.progress_interval_s = terminal ? 0.5 : 5.0;
     }
     Result result = solve_iteratively(scene, o);

@@ -4,6 +4,7 @@
 
 #include "input_error.h"
 #include "iterative_solver.h"
+#include "progress_line.h"
 #ifdef FIBRECHECK_WITH_FEM
 #include "reference_solver.h"
 #endif
@@ -18,10 +19,15 @@ bool have_reference() {
 #endif
 }
 
-Solvers make_solvers(bool quiet) {
+Solvers make_solvers(bool quiet, double progress_every_s) {
   Solvers s;
-  s.iterative = [](const Scene& scene) {
-    return solve_iteratively(scene, SolverOptions::from_scene(scene));
+  s.iterative = [progress_every_s](const Scene& scene) {
+    SolverOptions o = SolverOptions::from_scene(scene);
+    if (progress_every_s > 0.0) {
+      o.progress = progress_printer(false, "    ");
+      o.progress_interval_s = progress_every_s;
+    }
+    return solve_iteratively(scene, o);
   };
 #ifdef FIBRECHECK_WITH_FEM
   auto options = [quiet](LineContact mode) {

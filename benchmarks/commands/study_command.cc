@@ -25,6 +25,11 @@ const std::string kStudyNames =
 
 using SceneStudy = std::function<void(const std::vector<Scene>&, const Solvers&)>;
 
+/// How often a study's iterative runs say where they stand (s): never when quiet.
+double progress_every(const StudyArguments& args) {
+  return args.quiet ? 0.0 : args.progress_every_s;
+}
+
 /// A study on scene files: the scenes read, `check` on the options, the reference there (a study
 /// measures against it), then `study` with the solvers.
 int run_scene_study(const StudyArguments& args, const std::function<void()>& check,
@@ -39,7 +44,7 @@ int run_scene_study(const StudyArguments& args, const std::function<void()>& che
 #ifdef FIBRECHECK_WITH_FEM
   const MpiSession mpi;
 #endif
-  study(scenes, make_solvers(true));
+  study(scenes, make_solvers(true, progress_every(args)));
   if (!args.quiet) std::cout << "study written to " << args.out << "\n";
   return kExitConverged;
 }
@@ -128,11 +133,12 @@ void print(const CompactionStudyScene& s) {
     for (const CompactionPoint& p : r.points)
       if (p.status == "converged") last = &p, ++converged;
     std::printf(
-        "  %-9s mu %-4g %-8s %-14s %d of %zu steps converged, the last at Vf %.3f p %.4g MPa; "
-        "van Wyk k %.3g Vf0 %.3f R2 %.3f; Toll k %.3g n %.2f Vf0 %.3f R2 %.3f\n",
-        r.solver.c_str(), r.mu, r.friction_model.c_str(), r.status.c_str(), converged,
-        r.points.size(), last ? last->fibre_volume_fraction : NAN, last ? last->pressure : NAN,
-        r.van_wyk.k, r.van_wyk.vf0, r.van_wyk.r2, r.toll.k, r.toll.n, r.toll.vf0, r.toll.r2);
+        "  %-9s mu %-4g %-8s %-10s %-14s %d of %zu steps converged, the last at Vf %.3f p %.4g "
+        "MPa; van Wyk k %.3g Vf0 %.3f R2 %.3f; Toll k %.3g n %.2f Vf0 %.3f R2 %.3f\n",
+        r.solver.c_str(), r.mu, r.friction_model.c_str(), r.geometry.c_str(), r.status.c_str(),
+        converged, r.points.size(), last ? last->fibre_volume_fraction : NAN,
+        last ? last->pressure : NAN, r.van_wyk.k, r.van_wyk.vf0, r.van_wyk.r2, r.toll.k, r.toll.n,
+        r.toll.vf0, r.toll.r2);
   }
   for (const CompactionAgreement& a : s.agreement)
     std::printf(
@@ -213,7 +219,7 @@ int run_friction(const StudyArguments& args) {
   FrictionStudyOptions o = args.friction;
   o.quiet = args.quiet;
   const std::vector<FrictionPoint> points =
-      run_friction_study(o, make_solvers(true).iterative, args.out);
+      run_friction_study(o, make_solvers(true, progress_every(args)).iterative, args.out);
   if (!args.quiet) {
     print(points);
     std::cout << "study written to " << args.out << "\n";
@@ -228,6 +234,16 @@ const std::map<std::string, std::function<int(const StudyArguments&)>>& studies(
   return all;
 }
 
+/// --quiet, and how often a long iterative run prints where it stands.
+void add_quiet_and_progress(CLI::App* s, StudyArguments& args) {
+  s->add_flag("--quiet,-q", args.quiet, "Print nothing but errors");
+  s->add_option("--progress", args.progress_every_s,
+                "Seconds between the lines a long iterative run prints (its step, iteration and "
+                "residuals; 0: none)")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+}
+
 /// The options every study on scene files has (and the cap on its iterative runs, where it has
 /// one); the sub-command names the study it runs.
 void add_common_options(CLI::App* s, StudyArguments& args, long* max_iterations = nullptr) {
@@ -236,7 +252,7 @@ void add_common_options(CLI::App* s, StudyArguments& args, long* max_iterations 
   if (max_iterations)
     s->add_option("--max-iterations", *max_iterations, "Cap on each iterative run")
         ->check(CLI::PositiveNumber);
-  s->add_flag("--quiet,-q", args.quiet, "Print nothing but errors");
+  add_quiet_and_progress(s, args);
   s->callback([&args, s] { args.study = s->get_name(); });
 }
 
@@ -385,7 +401,7 @@ void add_friction(CLI::App& study, StudyArguments& args) {
       ->check(CLI::Range(1e-3, 0.9));
   friction->add_option("--max-iterations", o.max_iterations, "Cap on each run (default 100000)")
       ->check(CLI::PositiveNumber);
-  friction->add_flag("--quiet,-q", args.quiet, "Print nothing but errors");
+  add_quiet_and_progress(friction, args);
   friction->callback([&args, friction] { args.study = friction->get_name(); });
 }
 

@@ -14,14 +14,16 @@
 namespace fibrecheck {
 
 /// `fibrecheck study slices|tolerance|stability|compaction SCENE... --out DIR [options]`, or
-/// `fibrecheck study scale|friction --out DIR [--fibres N,...] [options]` on generated tows: one study
-/// on the scenes, each point written to DIR when done (a study run again computes only what is
-/// missing), then its CSV and JSON. Each study has its own options, with its defaults.
+/// `fibrecheck study scale|friction --out DIR [--fibres N,...] [options]` on generated tows: one
+/// study on the scenes, each point written to DIR when done (a study run again computes only what
+/// is missing), then its CSV and JSON. Each study has its own options, with its defaults.
 struct StudyArguments {
   std::string study;                ///< the sub-command chosen
   std::vector<std::string> scenes;  ///< the scene files (all studies but scale)
   std::string out;
   bool quiet = false;
+  /// A line from inside each iterative run this often (s); 0, or quiet: none.
+  double progress_every_s = 60.0;
   SliceStudyOptions slices;
   ToleranceStudyOptions tolerance;
   StabilityStudyOptions stability;

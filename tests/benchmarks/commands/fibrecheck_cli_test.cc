@@ -433,6 +433,29 @@ TEST_F(Cli, CompactionStudyRefusesScenesItCannotCompact) {
   }
 }
 
+// A study's long iterative runs say where they stand, every --progress seconds: here at every
+// check, so that each step of the load path is seen; none with -q, none in a run shorter than the
+// default minute. The summary names each run's geometry.
+TEST_F(Cli, CompactionStudyRunsSayWhereTheyStand) {
+  const std::string study = "study compaction " + scene("compaction_test") +
+                            " --steps 3 --reference-fibres 1 --out " + dir_;
+  const Outcome often = run(study + "often --progress 1e-9");
+  ASSERT_EQ(often.code, 0) << often.err;
+  for (const char* step :
+       {"step 1 of 3, iteration 1/", "step 2 of 3, iteration 1/", "step 3 of 3, iteration 1/"})
+    EXPECT_NE(often.err.find(step), std::string::npos) << step << "\n" << often.err;
+  EXPECT_NE(often.out.find("deformed"), std::string::npos) << often.out;
+  EXPECT_NE(often.out.find("linearised"), std::string::npos) << often.out;
+  const Outcome quiet = run(study + "quiet --progress 1e-9 -q");
+  EXPECT_EQ(quiet.code, 0);
+  EXPECT_EQ(quiet.err, "");
+  const Outcome plain = run(study + "plain");
+  EXPECT_EQ(plain.code, 0);
+  EXPECT_EQ(plain.err.find("iteration"), std::string::npos) << plain.err;
+  EXPECT_NE(plain.err.find("compaction study: point 1 of 2"), std::string::npos) << plain.err;
+  EXPECT_EQ(run(study + "never --progress -1").code, 2);
+}
+
 // Continuous line contact with a refinement, and the beams for ParaView through DataOut.
 TEST_F(Cli, FemContinuousLineContactAndParaViewBeams) {
   const Outcome ok = run("fem " + scene("parallel_fibres") +
