@@ -29,8 +29,10 @@ namespace fibrecheck {
 ///
 /// Under the deformed contact the answer's crossings act at the closest points of its own deformed
 /// fibres and its normals point between its own displaced centres: the crossings step there and the
-/// normals turn, and the problem linearised about them is solved again, a few times, until neither
-/// moves.
+/// normals turn, and the problem linearised about them is solved again, up to eight times, until
+/// neither moves. Where they still turn then (on compacted tows each pass takes them only 10–15 %
+/// of the rest of their way), the rest of the way the passes' contraction predicts is added to the
+/// answer's forces before the errors are measured.
 ///
 /// With Coulomb friction the frictions are unknowns as well (coulomb_answer: Newton steps of the
 /// frictional problem); under the seed's friction rule, which solves no problem of its own, they
