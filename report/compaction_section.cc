@@ -331,7 +331,7 @@ Table cost_table(const CompactionStudyScene& s) {
               "these were counted show none)." +
               kColumnKey;
   auto cell = [](const CompactionPoint& p) {
-    std::string cost = std::to_string(p.iterations) + " (" + seconds(p.time_s) + " s)";
+    std::string cost = count(p.iterations) + " (" + seconds(p.time_s) + " s)";
     if (p.geometric_updates > 0 || p.fixed_point_updates > 0)
       cost += " / " + std::to_string(p.geometric_updates) + ", " +
               std::to_string(p.fixed_point_updates);

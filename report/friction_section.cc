@@ -45,7 +45,7 @@ std::string seed_slip(const FrictionPoint* p) {
 }
 
 std::string iterations(const FrictionPoint* p) {
-  return p ? std::to_string(p->iterations) : "–";
+  return p ? count(p->iterations) : "–";
 }
 
 /// Pressure of the seed's rule over Coulomb's, where both converged.
@@ -169,9 +169,9 @@ void write_friction_section(ReportPage& page, const std::vector<FrictionPoint>& 
   page.finding(friction_finding(points));
   std::vector<std::vector<std::string>> rows;
   for (const FrictionPoint& p : points)
-    rows.push_back({std::to_string(p.fibres), cell(p.compaction), cell(p.fibre_volume_fraction),
-                    cell(p.mu), p.model, p.status, p.criterion, std::to_string(p.iterations),
-                    cell(p.time_s), cell(p.stick_residual), cell(p.pressure)});
+    rows.push_back({count(p.fibres), cell(p.compaction), cell(p.fibre_volume_fraction), cell(p.mu),
+                    p.model, p.status, p.criterion, count(p.iterations), cell(p.time_s),
+                    cell(p.stick_residual), cell(p.pressure)});
   page.csv("friction",
            {"fibres", "compaction", "fibre_volume_fraction", "mu", "friction_model", "status",
             "criterion", "iterations", "time_s", "stick_residual_mm", "pressure_MPa"},

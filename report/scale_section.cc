@@ -38,9 +38,9 @@ Table scale_table(const ScaleStudy& study) {
     const bool iterative = p.solver != "fem";
     const double unknowns = static_cast<double>(p.unknowns);
     t.rows.push_back(
-        {std::to_string(p.fibres), series_name(p), p.status, std::to_string(p.candidates),
-         std::to_string(p.active), std::to_string(p.iterations), seconds(p.time_s),
-         iterative ? sci(p.ms_per_iteration()) : "–", fixed3(p.peak_memory_mb),
+        {count(p.fibres), series_name(p), p.status, count(p.candidates), count(p.active),
+         count(p.iterations), seconds(p.time_s), iterative ? sci(p.ms_per_iteration()) : "–",
+         fixed3(p.peak_memory_mb),
          p.peak_proportional_memory_mb > 0.0 ? fixed3(p.peak_proportional_memory_mb) : "–",
          // The reference's peak over all its processes, per finite-element unknown.
          unknowns > 0.0 ? fixed3(1024.0 * p.peak_memory_mb * p.processes / unknowns) : "–",

@@ -73,7 +73,7 @@ void write_slice_section(ReportPage& page, const std::vector<SliceStudyScene>& s
     t.caption += caption_of(s);
     for (const SliceStudyPoint& p : s.points) {
       t.rows.push_back({s.scene, std::to_string(p.slices), sci(p.errors.deflection),
-                        sci(p.errors.force), sci(p.errors.energy), std::to_string(p.iterations),
+                        sci(p.errors.force), sci(p.errors.energy), count(p.iterations),
                         seconds(p.time_s)});
       rows.push_back({s.scene, std::to_string(p.slices), cell(p.time_s), cell(p.errors.deflection),
                       cell(p.errors.force), cell(p.errors.energy)});

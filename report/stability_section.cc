@@ -48,14 +48,14 @@ void catalogue_rows(Table& t, const StabilityStudyScene& s) {
     t.rows.push_back(
         {s.scene,
          p.solver == "iterative" && !p.rule.empty() ? p.solver + " (" + p.rule + ")" : p.solver,
-         p.expected_status, p.status, std::to_string(p.iterations), seconds(p.time_s), sci(p.error),
+         p.expected_status, p.status, count(p.iterations), seconds(p.time_s), sci(p.error),
          ok ? "yes" : "no: " + p.failures});
   }
 }
 
 void stiffness_rows(Table& t, const StabilityStudyScene& s) {
   for (const StiffnessPoint& p : s.stiffness)
-    t.rows.push_back({s.scene, sci(p.ratio), p.method, p.status, std::to_string(p.iterations),
+    t.rows.push_back({s.scene, sci(p.ratio), p.method, p.status, count(p.iterations),
                       seconds(p.time_s),
                       p.method == "reference" ? "(truth)" : sci(p.errors.worst())});
 }
@@ -124,10 +124,10 @@ void write_stability_section(ReportPage& page, const std::vector<StabilityStudyS
       continue;
     }
     for (const StepPoint& p : s.steps) {
-      t.steps.rows.push_back({s.scene, seconds(p.fraction), sci(p.c), p.status, p.criterion,
-                              std::to_string(p.iterations)});
-      rows.push_back({s.scene, cell(p.fraction), cell(p.c), std::to_string(p.iterations), p.status,
-                      p.criterion});
+      t.steps.rows.push_back(
+          {s.scene, seconds(p.fraction), sci(p.c), p.status, p.criterion, count(p.iterations)});
+      rows.push_back(
+          {s.scene, cell(p.fraction), cell(p.c), count(p.iterations), p.status, p.criterion});
     }
     stiffness_rows(t.stiffness, s);
     step_figure(page, s);

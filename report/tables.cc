@@ -11,6 +11,13 @@
 
 namespace fibrecheck {
 
+namespace {
+
+/// U+2009, the space between groups of digits.
+constexpr const char* kThinSpace = "\u2009";
+
+}  // namespace
+
 std::string sci(double value) {
   if (!std::isfinite(value)) return "–";
   char text[32];
@@ -23,6 +30,17 @@ std::string seconds(double value) {
   char text[32];
   std::snprintf(text, sizeof text, "%.4g", value);
   return text;
+}
+
+std::string count(long value) {
+  const std::string digits = std::to_string(value);
+  if (value < 10000) return digits;
+  std::string out;
+  for (std::size_t i = 0; i < digits.size(); ++i) {
+    if (i > 0 && (digits.size() - i) % 3 == 0) out += kThinSpace;
+    out += digits[i];
+  }
+  return out;
 }
 
 std::string fixed3(double value) {
@@ -47,7 +65,7 @@ const char* latex_of_symbol(const std::string& text, std::size_t& i) {
       {"½", "\\ensuremath{\\tfrac{1}{2}}"}, {"‖", "\\ensuremath{\\|}"}, {"·", "\\ensuremath{\\cdot}"},
       {"ⁿ", "\\ensuremath{^{n}}"}, {"²", "\\ensuremath{^{2}}"}, {"³", "\\ensuremath{^{3}}"},
       {"§", "\\S{}"},          {"…", "\\dots{}"},          {"→", "\\ensuremath{\\to}"},
-      {"°", "\\ensuremath{^\\circ}"}};
+      {"°", "\\ensuremath{^\\circ}"}, {kThinSpace, "\\,"}};
   for (const auto& [utf8, latex] : symbols) {
     const std::size_t length = std::char_traits<char>::length(utf8);
     if (text.compare(i, length, utf8) == 0) {
@@ -155,8 +173,11 @@ std::string latex_escape(const std::string& text) {
 namespace {
 
 /// Whether a table cell is a number (or "–" for none): such columns are set flush right.
-bool is_numeric_cell(const std::string& cell) {
-  if (cell.empty() || cell == "–" || cell == "-") return true;
+bool is_numeric_cell(const std::string& text) {
+  if (text.empty() || text == "–" || text == "-") return true;
+  std::string cell = text;
+  for (std::size_t at; (at = cell.find(kThinSpace)) != std::string::npos;)
+    cell.erase(at, std::char_traits<char>::length(kThinSpace));
   char* end = nullptr;
   std::strtod(cell.c_str(), &end);
   if (end == cell.c_str()) return false;

@@ -29,6 +29,9 @@ std::string sci(double value);
 std::string seconds(double value);
 /// A number with three decimals ("0.452"), "–" for NaN.
 std::string fixed3(double value);
+/// A count (iterations, contacts), its digits grouped in threes by a thin space from 10 000 up
+/// ("366 784"; "3370" as it is), as the SI brochure writes numbers; LaTeX gets "\,".
+std::string count(long value);
 
 /// Text with LaTeX's special characters escaped, its UTF-8 symbols as LaTeX and its numbers in
 /// scientific notation typeset (4.85e-08 as 4.85 × 10⁻⁸).
@@ -38,6 +41,5 @@ std::string latex_escape(const std::string& text);
 /// (\cite{key}), "[#tab:label]" and "[#fig:label]" refer to a table or figure (Table~\ref{…}),
 /// the rest is latex_escape'd.
 std::string latex_text(const std::string& text);
-
 
 }  // namespace fibrecheck

@@ -203,8 +203,8 @@ void write_tolerance_section(ReportPage& page, const std::vector<ToleranceStudyS
                       cell(u.reference_time_s), cell(speedup)});
     }
     for (const TolerancePoint& p : s.points)
-      points.push_back({s.scene, p.method, cell(p.parameter), cell(p.time_s),
-                        std::to_string(p.iterations), p.status, cell(p.errors.worst())});
+      points.push_back({s.scene, p.method, cell(p.parameter), cell(p.time_s), count(p.iterations),
+                        p.status, cell(p.errors.worst())});
     error_against_time_figure(page, s);
   }
   page.table(t);

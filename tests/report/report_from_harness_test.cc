@@ -216,7 +216,7 @@ TEST_F(ReportFromHarness, TheTablesHoldWhatTheStudiesReturned) {
   const SliceStudyPoint& p = run_->slices.at(0).points.at(1);
   EXPECT_NE(
       md.find("| parallel_fibres | 4 | " + sci(p.errors.deflection) + " | " + sci(p.errors.force) +
-              " | " + sci(p.errors.energy) + " | " + std::to_string(p.iterations) + " |"),
+              " | " + sci(p.errors.energy) + " | " + count(p.iterations) + " |"),
       std::string::npos);
   const SpeedUp& u = run_->tolerance.at(0).speedups.at(0);
   EXPECT_NE(md.find("| two_fibres_crossing | " + sci(u.error_level) + " | " +

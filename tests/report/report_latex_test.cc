@@ -11,8 +11,8 @@
 #include <sstream>
 
 #include "report_data.h"
-#include "slurp.h"
 #include "report_writer.h"
+#include "slurp.h"
 #include "tables.h"
 
 namespace fibrecheck {
@@ -63,6 +63,23 @@ TEST(ReportLatex, TextColumnsLeftNumbersRight) {
   EXPECT_NE(tex.find("\\begin{tabular}{llrr}"), std::string::npos) << tex;
   EXPECT_NE(tex.find("max width=\\linewidth"), std::string::npos) << tex;
   EXPECT_NE(markdown(t, 1).find("| --- | --- | ---: | ---: |"), std::string::npos);
+}
+
+// Counts from 10 000 up have their digits grouped in threes by a thin space, set as "\," in
+// LaTeX; such a column is still numeric, flush right.
+TEST(ReportLatex, LargeCountsAreGroupedInThrees) {
+  EXPECT_EQ(count(0), "0");
+  EXPECT_EQ(count(3370), "3370");
+  EXPECT_EQ(count(12105), "12\u2009105");
+  EXPECT_EQ(count(366784), "366\u2009784");
+  EXPECT_EQ(count(1066717), "1\u2009066\u2009717");
+  EXPECT_EQ(latex_escape(count(366784) + " (242.4 s)"), "366\\,784 (242.4 s)");
+  Table t;
+  t.label = "t";
+  t.caption = "c";
+  t.header = {"Fibres", "Iterations"};
+  t.rows = {{count(12000), count(752254)}, {count(100), count(8183)}};
+  EXPECT_NE(latex(t).find("\\begin{tabular}{rr}"), std::string::npos) << latex(t);
 }
 
 /// The log's complaints: overfull boxes wider than 1 pt, undefined citations and references.
