@@ -111,7 +111,7 @@ void slice_centres(int n, std::vector<Eigen::Vector2d>& centres, std::vector<dou
 }
 
 using PairFinder = void (*)(const std::vector<Eigen::Vector2d>&, const std::vector<double>&, double,
-                            std::vector<std::pair<int, int>>&);
+                            std::vector<std::pair<int, int>>&, const std::vector<double>&);
 
 // One slice's contact pairs: by the grid broad phase (slice_pairs) or all pairs (slice_pairs_all).
 template <PairFinder find>
@@ -121,7 +121,7 @@ void BM_SlicePairs(benchmark::State& state) {
   slice_centres(static_cast<int>(state.range(0)), centres, radii);
   std::vector<std::pair<int, int>> pairs;
   for (auto _ : state) {
-    find(centres, radii, 0.0025, pairs);
+    find(centres, radii, 0.0025, pairs, {});
     benchmark::DoNotOptimize(pairs.data());
   }
   state.SetComplexityN(state.range(0));

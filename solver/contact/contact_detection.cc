@@ -60,12 +60,20 @@ std::vector<Contact> ContactDetector::detect(
   if (point_pairs_possible_) detect_points(grid_u, contacts);
   if (walls()) detect_walls(grid_u, contacts);
   for (Contact& c : contacts) {
+    // Linearised crossings act at the chords' closest points: displaced as the fibres are there.
+    if (!geometry_.deformed()) geometry_.place_on_undeformed(c);
     const Eigen::Vector3d u_a = interpolate(grid_u, c.a, c.s_a);
     const Eigen::Vector3d u_b = c.kind == ContactKind::wall ? Eigen::Vector3d::Zero().eval()
                                                             : interpolate(grid_u, c.b, c.s_b);
     geometry_.place(c, u_a, u_b);
     c.overlap = geometry_.overlap(c, u_a, u_b);
   }
+  if (!geometry_.deformed())
+    contacts.erase(std::remove_if(contacts.begin(), contacts.end(),
+                                  [this](const Contact& c) {
+                                    return c.kind != ContactKind::wall && !(c.overlap > -margin_);
+                                  }),
+                   contacts.end());
   if (geometry_.deformed()) {
     // Crossings were placed where the chords cross; on the deformed fibres they move towards
     // the closest points of the displaced fibres nearby, and are measured there.
@@ -168,8 +176,13 @@ bool ContactDetector::follow_crossing(const std::vector<std::vector<Eigen::Vecto
 
 void ContactDetector::detect_lines(const std::vector<std::vector<Eigen::Vector3d>>& grid_u,
                                    std::vector<Contact>& out) const {
+  // Deformed: the displaced centres within the margin. Linearised: the overlap along the
+  // undeformed normal decides, and it can close while the displaced centres slide apart, so the
+  // pairs are sought about the undeformed centres, each reaching as far as it has moved in the
+  // slice's plane; detect() keeps those within the margin.
+  const bool deformed = geometry_.deformed();
   std::vector<Eigen::Vector2d> centres;
-  std::vector<double> radii, params;
+  std::vector<double> radii, params, reach;
   std::vector<int> owner;
   std::vector<std::pair<int, int>> pairs;
   for (int i = 0; i < line_.size(); ++i) {
@@ -178,22 +191,25 @@ void ContactDetector::detect_lines(const std::vector<std::vector<Eigen::Vector3d
     radii.clear();
     params.clear();
     owner.clear();
+    reach.clear();
     for (int f : tow_fibres_) {
       const Fibre& fibre = geometry_.fibres()[f];
       const Eigen::Vector3d& axis = geometry_.tow_axis();
       const double along = (fibre.end - fibre.start).dot(axis);
       const double s = (x - fibre.start.dot(axis)) / along;
       if (!(s > 1e-12 && s < 1.0 - 1e-12)) continue;
-      const Eigen::Vector3d c = fibre.point(s) + interpolate(grid_u, f, s);
+      const Eigen::Vector3d u = interpolate(grid_u, f, s);
+      const Eigen::Vector3d c = fibre.point(s) + (deformed ? u : Eigen::Vector3d::Zero());
       centres.emplace_back(c.dot(g1_), c.dot(g2_));
+      if (!deformed) reach.push_back(Eigen::Vector2d(u.dot(g1_), u.dot(g2_)).norm());
       radii.push_back(fibre.radius);
       params.push_back(s);
       owner.push_back(f);
     }
     if (centres.size() > 2)
-      slice_pairs(centres, radii, margin_, pairs);
+      slice_pairs(centres, radii, margin_, pairs, reach);
     else
-      slice_pairs_all(centres, radii, margin_, pairs);
+      slice_pairs_all(centres, radii, margin_, pairs, reach);
     for (const auto& [p, q] : pairs) {
       const int first = owner[p] < owner[q] ? p : q, second = owner[p] < owner[q] ? q : p;
       Contact c;
@@ -236,16 +252,22 @@ void ContactDetector::detect_points(const std::vector<std::vector<Eigen::Vector3
   const std::vector<Fibre>& fibres = geometry_.fibres();
   const int n = static_cast<int>(fibres.size());
   const int m = static_cast<int>(grid_.size()) - 1;
-  // Broad phase: boxes around each deformed polyline, swept along x.
+  // Broad phase: boxes around each deformed polyline, swept along x. Linearised: boxes around
+  // the chords, each reaching as far as its fibre has moved (the overlap at the chords' closest
+  // points decides, in detect()).
+  const bool deformed = geometry_.deformed();
   std::vector<Eigen::Vector3d> lo(n), hi(n);
   for (int f = 0; f < n; ++f) {
-    lo[f] = hi[f] = fibres[f].start + grid_u[f][0];
+    const auto shift = [&](int j) { return deformed ? grid_u[f][j] : Eigen::Vector3d::Zero(); };
+    lo[f] = hi[f] = fibres[f].start + shift(0);
+    double moved = grid_u[f][0].norm();
     for (int j = 1; j <= m; ++j) {
-      const Eigen::Vector3d p = fibres[f].point(grid_[j]) + grid_u[f][j];
+      const Eigen::Vector3d p = fibres[f].point(grid_[j]) + shift(j);
       lo[f] = lo[f].cwiseMin(p);
       hi[f] = hi[f].cwiseMax(p);
+      moved = std::max(moved, grid_u[f][j].norm());
     }
-    const double reach = fibres[f].radius + 0.5 * margin_;
+    const double reach = fibres[f].radius + 0.5 * margin_ + (deformed ? 0.0 : moved);
     lo[f].array() -= reach;
     hi[f].array() += reach;
   }
@@ -261,10 +283,11 @@ void ContactDetector::detect_points(const std::vector<std::vector<Eigen::Vector3
       c.kind = ContactKind::point;
       c.a = a;
       c.b = b;
-      double distance;
-      closest_on_polylines(grid_u, a, b, c, distance);
-      const double radii = fibres[a].radius + fibres[b].radius;
-      if (distance - radii >= margin_) continue;
+      if (deformed) {
+        double distance;
+        closest_on_polylines(grid_u, a, b, c, distance);
+        if (distance - (fibres[a].radius + fibres[b].radius) >= margin_) continue;
+      }
       out.push_back(c);
     }
   }

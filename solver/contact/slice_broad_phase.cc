@@ -14,17 +14,22 @@ bool within(const Eigen::Vector2d& a, const Eigen::Vector2d& b, double ra, doubl
   return (a - b).squaredNorm() < reach * reach;
 }
 
+double extra(const std::vector<double>& reach, int i) {
+  return reach.empty() ? 0.0 : reach[i];
+}
+
 }  // namespace
 
 void slice_pairs(const std::vector<Eigen::Vector2d>& centres, const std::vector<double>& radii,
-                 double margin, std::vector<std::pair<int, int>>& pairs) {
+                 double margin, std::vector<std::pair<int, int>>& pairs,
+                 const std::vector<double>& reach) {
   pairs.clear();
   const int n = static_cast<int>(centres.size());
   if (n < 2) return;
   double r_max = 0.0;
   Eigen::Vector2d lo = centres[0], hi = centres[0];
   for (int i = 0; i < n; ++i) {
-    r_max = std::max(r_max, radii[i]);
+    r_max = std::max(r_max, radii[i] + extra(reach, i));
     lo = lo.cwiseMin(centres[i]);
     hi = hi.cwiseMax(centres[i]);
   }
@@ -55,7 +60,8 @@ void slice_pairs(const std::vector<Eigen::Vector2d>& centres, const std::vector<
       for (; it != keyed.end() && it->first == key; ++it) {
         const int j = it->second;
         if (o[0] == 0 && o[1] == 0 && j <= i) continue;
-        if (within(centres[i], centres[j], radii[i], radii[j], margin))
+        if (within(centres[i], centres[j], radii[i] + extra(reach, i), radii[j] + extra(reach, j),
+                   margin))
           pairs.emplace_back(std::min(i, j), std::max(i, j));
       }
     }
@@ -64,12 +70,15 @@ void slice_pairs(const std::vector<Eigen::Vector2d>& centres, const std::vector<
 }
 
 void slice_pairs_all(const std::vector<Eigen::Vector2d>& centres, const std::vector<double>& radii,
-                     double margin, std::vector<std::pair<int, int>>& pairs) {
+                     double margin, std::vector<std::pair<int, int>>& pairs,
+                     const std::vector<double>& reach) {
   pairs.clear();
   const int n = static_cast<int>(centres.size());
   for (int i = 0; i < n; ++i)
     for (int j = i + 1; j < n; ++j)
-      if (within(centres[i], centres[j], radii[i], radii[j], margin)) pairs.emplace_back(i, j);
+      if (within(centres[i], centres[j], radii[i] + extra(reach, i), radii[j] + extra(reach, j),
+                 margin))
+        pairs.emplace_back(i, j);
 }
 
 }  // namespace fibrecheck

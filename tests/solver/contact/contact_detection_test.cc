@@ -13,6 +13,13 @@
 //    u_z = −3m·s on a gap of 2m, leaves the gap 2m − 3m·s, so exactly the stations with s > 1/3
 //    are candidates (a linear shift is exactly what the detection grid interpolates).
 //  - LineQuadrature::gauss(c): 2c line contacts per pair, weights 1/(2c), at the Gauss points.
+//  - Sliding: A m/2 above B, shifted by (0, 1.5r, −0.3m). Along the undeformed normal (−z) the gap
+//    is 0.2m, so under the linearised contact every slice is a candidate with overlap −0.2m;
+//    the displaced centres are √((1.5r)² + (2r + 0.2m)²) − 2r = 5.16m apart, so under the
+//    deformed contact none is. Shifted by (0, 1.5r, +0.6m) the gap is 1.1m under both: none.
+//    A crossing with a gap of m/2 whose fibre B moves by (1 mm, 0, −0.3m), past A's end: along
+//    the undeformed normal (+z, at the chords' closest points) the gap is 0.2m, a candidate with
+//    overlap −0.2m; the displaced fibres are 0.3 mm apart, no candidate.
 #include "contact_detection.h"
 
 #include <gtest/gtest.h>
@@ -425,6 +432,57 @@ TEST(ContactDetection, LinearDisplacementBringsExactlyTheStationsBeyondAThirdIn)
       EXPECT_EQ(contacts[k].slice, static_cast<int>(k) + 17);
       EXPECT_NEAR(contacts[k].s_a, s, kStation);
       EXPECT_NEAR(contacts[k].overlap, -2 * m + 3 * m * s, kOverlap);
+    }
+  }
+}
+
+TEST(ContactDetection, UnderTheLinearisedContactTheOverlapAlongTheUndeformedNormalDecides) {
+  const double m = 0.001, r = 0.01;
+  Scene scene = testing::parallel(1e-4, 50, r, r);
+  scene.fibres[0].start.z() += 0.5 * m;
+  scene.fibres[0].end.z() += 0.5 * m;
+  for (ContactGeometryModel model :
+       {ContactGeometryModel::linearised, ContactGeometryModel::deformed}) {
+    scene.contact.geometry = model;
+    const auto fibres = make_fibres(scene);
+    const ContactDetector detector(fibres, scene, m);
+    Grid grid = zero_grid(detector, fibres.size());
+    displace(grid, detector, 0, [&](double) { return V(0, 1.5 * r, -0.3 * m); });
+    const auto contacts = detector.detect(grid);
+    if (model == ContactGeometryModel::deformed) {
+      EXPECT_TRUE(contacts.empty());
+    } else {
+      ASSERT_EQ(contacts.size(), 50u);
+      for (const Contact& c : contacts) {
+        EXPECT_NEAR((c.normal + V::UnitZ()).norm(), 0.0, kStation);
+        EXPECT_NEAR(c.overlap, -0.2 * m, kOverlap);
+      }
+    }
+    displace(grid, detector, 0, [&](double) { return V(0, 1.5 * r, 0.6 * m); });
+    EXPECT_TRUE(detector.detect(grid).empty());
+  }
+}
+
+TEST(ContactDetection, UnderTheLinearisedContactACrossingIsMeasuredAtTheChordsClosestPoints) {
+  const double m = 0.001;
+  Scene crossing = testing::crossing(0.3, 0.6, -0.5 * m);
+  for (ContactGeometryModel model :
+       {ContactGeometryModel::linearised, ContactGeometryModel::deformed}) {
+    crossing.contact.geometry = model;
+    const auto fibres = make_fibres(crossing);
+    const ContactDetector detector(fibres, crossing, m);
+    Grid grid = zero_grid(detector, fibres.size());
+    displace(grid, detector, 1, [&](double) { return V(1.0, 0, -0.3 * m); });
+    const auto contacts = detector.detect(grid);
+    if (model == ContactGeometryModel::deformed) {
+      EXPECT_TRUE(contacts.empty());
+    } else {
+      ASSERT_EQ(contacts.size(), 1u);
+      EXPECT_EQ(contacts[0].kind, ContactKind::point);
+      EXPECT_NEAR(contacts[0].s_a, 0.3, kStation);
+      EXPECT_NEAR(contacts[0].s_b, 0.6, kStation);
+      EXPECT_NEAR((contacts[0].normal - V::UnitZ()).norm(), 0.0, kStation);
+      EXPECT_NEAR(contacts[0].overlap, -0.2 * m, kOverlap);
     }
   }
 }

@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <random>
 
 namespace fibrecheck {
@@ -24,8 +25,28 @@ TEST(SliceBroadPhase, FindsTheSamePairsAsAllPairs) {
       if (n >= 300) {
         EXPECT_FALSE(all.empty());
       }
+      // Each centre reaching further by its own length (up to one radius, a few far).
+      std::uniform_real_distribution<double> e(0.0, 0.01);
+      std::vector<double> reach(n);
+      for (int i = 0; i < n; ++i) reach[i] = i % 7 == 0 ? 5 * e(rng) : e(rng);
+      std::vector<std::pair<int, int>> wider;
+      slice_pairs(centres, radii, margin, grid, reach);
+      slice_pairs_all(centres, radii, margin, wider, reach);
+      EXPECT_EQ(grid, wider) << "n = " << n << ", margin = " << margin << ", with reach";
+      EXPECT_TRUE(std::includes(wider.begin(), wider.end(), all.begin(), all.end()));
     }
   }
+}
+
+TEST(SliceBroadPhase, ReachAddsToTheMarginOfEachPairItsTwoCentresReach) {
+  // Gap 0.01 between the first two discs: within margin 0.002 only with reach 0.004 + 0.0041.
+  const std::vector<Eigen::Vector2d> centres = {{0, 0}, {0.03, 0}, {0.1, 0}};
+  const std::vector<double> radii = {0.01, 0.01, 0.01};
+  std::vector<std::pair<int, int>> pairs;
+  slice_pairs(centres, radii, 0.002, pairs, {0.004, 0.0039, 0.0});
+  EXPECT_TRUE(pairs.empty());
+  slice_pairs(centres, radii, 0.002, pairs, {0.004, 0.0041, 0.0});
+  EXPECT_EQ(pairs, (std::vector<std::pair<int, int>>{{0, 1}}));
 }
 
 TEST(SliceBroadPhase, TouchingAndCoincidentCentres) {
