@@ -59,32 +59,34 @@ std::vector<Contact> ContactDetector::detect(
   if (slicing_) detect_lines(grid_u, contacts);
   if (point_pairs_possible_) detect_points(grid_u, contacts);
   if (walls()) detect_walls(grid_u, contacts);
+  const bool deformed = geometry_.deformed();
   for (Contact& c : contacts) {
-    // Linearised crossings act at the chords' closest points: displaced as the fibres are there.
-    if (!geometry_.deformed()) geometry_.place_on_undeformed(c);
+    // Linearised: placed on the undeformed fibres first, so that a crossing is displaced as the
+    // fibres are at the chords' closest points, where it acts.
+    if (!deformed) geometry_.place_on_undeformed(c);
     const Eigen::Vector3d u_a = interpolate(grid_u, c.a, c.s_a);
     const Eigen::Vector3d u_b = c.kind == ContactKind::wall ? Eigen::Vector3d::Zero().eval()
                                                             : interpolate(grid_u, c.b, c.s_b);
-    geometry_.place(c, u_a, u_b);
+    if (deformed) geometry_.place(c, u_a, u_b);
     c.overlap = geometry_.overlap(c, u_a, u_b);
   }
-  if (!geometry_.deformed())
+  if (!deformed) {
     contacts.erase(std::remove_if(contacts.begin(), contacts.end(),
                                   [this](const Contact& c) {
                                     return c.kind != ContactKind::wall && !(c.overlap > -margin_);
                                   }),
                    contacts.end());
-  if (geometry_.deformed()) {
-    // Crossings were placed where the chords cross; on the deformed fibres they move towards
-    // the closest points of the displaced fibres nearby, and are measured there.
-    for (Contact& c : contacts) {
-      if (c.kind != ContactKind::point) continue;
-      int steps = 0;
-      while (steps < kDetectionSteps && follow_crossing(grid_u, c, interpolate(grid_u, c.a, c.s_a),
-                                                        interpolate(grid_u, c.b, c.s_b)))
-        ++steps;
-      if (steps > 0) place_crossing(grid_u, c);
-    }
+    return contacts;
+  }
+  // Crossings were placed where the chords cross; on the deformed fibres they move towards the
+  // closest points of the displaced fibres nearby, and are measured there.
+  for (Contact& c : contacts) {
+    if (c.kind != ContactKind::point) continue;
+    int steps = 0;
+    while (steps < kDetectionSteps && follow_crossing(grid_u, c, interpolate(grid_u, c.a, c.s_a),
+                                                      interpolate(grid_u, c.b, c.s_b)))
+      ++steps;
+    if (steps > 0) place_crossing(grid_u, c);
   }
   return contacts;
 }
