@@ -14,10 +14,15 @@ namespace {
 
 /// Geometric updates a step may take before the reference says its normals did not settle.
 constexpr int kMaxGeometricUpdates = 200;
-/// New meshes a step may take for crossings that move. Each move is a Newton step towards the
-/// closest points, on tangents estimated from the detection grid: near the answer the estimate's
-/// own error can leave a step larger than a tenth of the tolerance, back and forth.
+/// New meshes a step takes for crossings that move, whatever their steps. Each move is a Newton
+/// step towards the closest points, on tangents estimated from the detection grid; a crossing's
+/// place sets its normal to first order but its gap only to second, so the moves go on to the
+/// closest points rather than until the gap stops changing.
 constexpr int kMaxCrossingMoves = 5;
+/// New meshes a step may take in all while the moves converge: each further move's largest step
+/// at most half the one before. Near the answer the grid's tangents and the new mesh's own
+/// solution can leave steps that no longer shrink, back and forth.
+constexpr int kMostCrossingMoves = 30;
 /// A change of the unit normals below which the next solve would be the last one again.
 constexpr double kUnturned = 1e-12;
 /// A change of the unit normals below which the answer's forces act along its own displaced
@@ -48,6 +53,29 @@ double ReferenceSolver::largest_relative_displacement(
   return largest;
 }
 
+// The largest distance (mm) a crossing of `moved` lies along either fibre from where it is now.
+double ReferenceSolver::largest_crossing_step(const std::vector<Contact>& moved) const {
+  double largest = 0.0;
+  for (std::size_t k = 0; k < contacts_.size(); ++k) {
+    if (contacts_[k].kind != ContactKind::point) continue;
+    const double along_a = std::fabs(moved[k].s_a - contacts_[k].s_a) * fibres_[moved[k].a].length;
+    const double along_b = std::fabs(moved[k].s_b - contacts_[k].s_b) * fibres_[moved[k].b].length;
+    largest = std::max({largest, along_a, along_b});
+  }
+  return largest;
+}
+
+// Whether crossings that would move by up to `step` get a new mesh: the first kMaxCrossingMoves
+// times, then while each move's step is at most half the last one's.
+bool ReferenceSolver::crossings_move_on(double step) {
+  const bool converging = step <= 0.5 * last_crossing_step_;
+  if (crossing_moves_ >= kMostCrossingMoves) return false;
+  if (crossing_moves_ >= kMaxCrossingMoves && !converging) return false;
+  ++crossing_moves_;
+  last_crossing_step_ = step;
+  return true;
+}
+
 // The overlaps d0 and the compliance W of the current candidates again, on the same mesh, about the
 // normals they have now: the stored influence matrices and loads' displacements, nothing solved
 // again, and W filled in place (its pattern is that of the same candidates).
@@ -65,8 +93,8 @@ void ReferenceSolver::assemble_about_normals() {
 // round-off of the finite elements; or that no longer turn at all, and the residual left is the
 // linearised solve's own). The normals each problem is linearised about are those of the displaced
 // centres mixed with the updates before (normal_mixing.h): the plain sequence contracts by about
-// 0.7 an update on compacted tows. A crossing whose centres would come closer by a tenth of the
-// tolerance elsewhere needs a new mesh: the outer loop takes it from there.
+// 0.7 an update on compacted tows. A crossing whose closest points lie elsewhere needs a new mesh
+// (while its moves converge, crossings_move_on): the outer loop takes it from there.
 void ReferenceSolver::follow_the_deformed_fibres() {
   const double settled = std::max(threshold_, 1e-3 * tolerance_);
   std::vector<Eigen::Vector3d> u_a, u_b;
@@ -76,9 +104,8 @@ void ReferenceSolver::follow_the_deformed_fibres() {
     deform();
     displacements_at_contacts(u_a, u_b);
     std::vector<Contact> moved = contacts_;
-    if (detector_.point_search() && crossing_moves_ < kMaxCrossingMoves &&
-        detector_.follow_crossings(grid_u_, moved, u_a, u_b, 0.1 * tolerance_)) {
-      ++crossing_moves_;
+    if (detector_.point_search() && detector_.follow_crossings(grid_u_, moved, u_a, u_b) &&
+        crossings_move_on(largest_crossing_step(moved))) {
       moved_crossings_ = std::move(moved);
       remesh_ = true;
       return;

@@ -43,7 +43,8 @@ void ReferenceSolver::output_results(Result& r) {
   r.geometry = to_string(scene_.contact.geometry);
   r.geometric_updates = geometric_updates_;
   // The seed's test on the final state; a crossing found off the deformed closest points is
-  // measured there on the fibres' displacements at the detection grid, interpolated.
+  // measured there, moved by the change of the fibres' displacements at the detection grid,
+  // interpolated.
   const std::vector<double>& grid = detector_.grid();
   r.deformed_test = deformed_test(
       detector_, contacts_, u_a, u_b,

@@ -145,6 +145,8 @@ class ReferenceSolver {
   // Deformed contact (deformed_contact.cc).
   double deformed_residual(const std::vector<Eigen::Vector3d>& u_a,
                            const std::vector<Eigen::Vector3d>& u_b) const;
+  double largest_crossing_step(const std::vector<Contact>& moved) const;
+  bool crossings_move_on(double step);
   double largest_relative_displacement(const std::vector<Eigen::Vector3d>& u_a,
                                        const std::vector<Eigen::Vector3d>& u_b) const;
   void assemble_about_normals();
@@ -188,6 +190,7 @@ class ReferenceSolver {
   std::vector<Contact> moved_crossings_;
   bool remesh_ = false;  ///< deformed contact: a crossing moved off its station
   int crossing_moves_ = 0;
+  double last_crossing_step_ = INFINITY;  ///< mm, the largest step of the last crossing move
   Eigen::VectorXd d0_, P_;
   /// W is sparse: two contacts interact only through a fibre they share.
   Eigen::SparseMatrix<double> W_;

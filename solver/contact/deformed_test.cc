@@ -15,16 +15,21 @@ DeformedTest deformed_test(const ContactDetector& detector, const std::vector<Co
     if (c.kind == ContactKind::point)
       for (int f : {c.a, c.b})
         if (grid_u[f].empty()) displacements(f, detector.grid(), grid_u[f]);
+  // From where the contact is measured to where it moved: a difference of two displacements on
+  // the same fibre, so that an interpolation's own error (of the grid's spacing squared) cancels
+  // for the short moves near the answer.
+  std::vector<Eigen::Vector3d> at;
+  const auto change = [&](int fibre, double from, double to) {
+    displacements(fibre, {std::min(from, to), std::max(from, to)}, at);
+    return Eigen::Vector3d(from <= to ? at[1] - at[0] : at[0] - at[1]);
+  };
   DeformedTest test;
-  std::vector<Eigen::Vector3d> at(1);
   for (std::size_t k = 0; k < contacts.size(); ++k) {
     Contact c = contacts[k];
     Eigen::Vector3d ua = u_a[k], ub = u_b[k];
     if (c.kind == ContactKind::point && detector.follow_crossing(grid_u, c, ua, ub)) {
-      displacements(c.a, {c.s_a}, at);
-      ua = at[0];
-      displacements(c.b, {c.s_b}, at);
-      ub = at[0];
+      ua += change(c.a, contacts[k].s_a, c.s_a);
+      ub += change(c.b, contacts[k].s_b, c.s_b);
     }
     const double gap = geometry.deformed_gap(c, ua, ub);
     if (c.force > 0.0)

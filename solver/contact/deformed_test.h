@@ -17,9 +17,10 @@ using FibreDisplacements =
 /// The seed's own test of a final state in the deformed configuration (Eq. 4.15, §4.3.6), whatever
 /// contact model produced it: every candidate's gap between displaced centres — a slice's in its
 /// cross-section plane, a crossing's at the closest points of the deformed fibres near where it
-/// acts (found on the polylines through the detection grid) — the largest |gap| where the
-/// contact pushes and the largest overlap where it does not. `u_a`, `u_b` are the displacements
-/// of each contact's two sides where it acts.
+/// acts (one step of ContactDetector::follow_crossing, displaced by `u_a`, `u_b` plus their
+/// change along each fibre that `displacements` gives) — the largest |gap| where the contact
+/// pushes and the largest overlap where it does not. `u_a`, `u_b` are the displacements of each
+/// contact's two sides where it acts.
 DeformedTest deformed_test(const ContactDetector& detector, const std::vector<Contact>& contacts,
                            const std::vector<Eigen::Vector3d>& u_a,
                            const std::vector<Eigen::Vector3d>& u_b,
