@@ -126,11 +126,13 @@ std::string unsettled_message(const FrictionalProblem& problem, const TrescaOpti
   out.precision(3);
   if (!inner.settled && one_tangent)
     out << "the frictional contact problem's Tresca problem was not solved in "
-        << options.max_active_set_passes << " active-set passes";
+        << options.max_active_set_passes << " active-set passes, and Newton's method on Coulomb's "
+        << "law from there leaves " << coulomb << " mm";
   else if (!inner.settled)
     out << "the frictional contact problem did not settle: after " << inner.newton_steps
         << " Newton steps on its Tresca problem Coulomb's law is still violated by "
-        << inner.residual << " mm";
+        << inner.residual << " mm, and Newton's method on Coulomb's law from there leaves "
+        << coulomb << " mm";
   else
     out << "the Tresca fixed point of the frictional contact problem did not settle: after "
         << updates << " updates the disk radii still move the slips by " << change
@@ -239,6 +241,14 @@ TrescaSolve tresca_fixed_point(FrictionalProblem& problem, const TrescaOptions& 
   result.updates = std::min(updates, options.max_updates);
   // Judged by the floor the stop was decided on (the last inner answer's may lie lower).
   result.settled_to = std::max(result.settled_to, settled);
+  // An inner problem its semismooth Newton method did not solve: it can cycle on a Tresca problem
+  // with disks where Newton's method on Coulomb's law itself, started from where it stopped,
+  // settles (friction wedging stiff fibres onto a tow).
+  if (!inner.settled) {
+    const Eigen::VectorXd stopped = r;
+    inner.settled =
+        finish_by_newton(problem, options, result.settled_to, stopped, result, r, coulomb_residual);
+  }
   if (inner.settled && change > result.settled_to && !result.finished_by_newton)
     finish_by_newton(problem, options, result.settled_to, best.size() == r.size() ? best : r,
                      result, r, coulomb_residual);

@@ -52,10 +52,12 @@ struct TrescaSolve {
 /// bounds) finishes from the answer of the fixed point's smallest violation (a stalled fixed point
 /// wanders off it): started that close it settles, where from the frictionless answer it cycles.
 /// Where it does not, the fixed point goes on from where it was, and Newton's method is tried once
-/// more if the updates run out. The fixed point stalls where a contact's friction loads its own
-/// normal force about as much as the normal force moves the radius (μ·∂P/∂g near 1, the radius
-/// creeping a little further at every update), or where contacts that constrain nearly the same
-/// motion share a normal force in a way each Tresca problem settles differently. The iterative
+/// more if the updates run out. An inner problem with disks whose semismooth Newton method cycles
+/// (friction wedging stiff fibres onto a tow) hands over to Newton's method on Coulomb's law the
+/// same way, from where its solve stopped. The fixed point stalls where a contact's friction loads
+/// its own normal force about as much as the normal force moves the radius (μ·∂P/∂g near 1, the
+/// radius creeping a little further at every update), or where contacts that constrain nearly the
+/// same motion share a normal force in a way each Tresca problem settles differently. The iterative
 /// solver has a Tresca fixed point of its own; this one is written apart from it on purpose, since
 /// the reference must not share a solution method with what it checks.
 ///
