@@ -57,6 +57,7 @@ void ReferenceSolver::output_results(Result& r) {
           u[i] = (1.0 - w) * grid_u_[f][j] + w * grid_u_[f][j + 1];
         }
       });
+  warn_where_the_seeds_test_fails(scene_.overlap_tolerance(), r);
   add_energies(r);
 }
 

@@ -78,6 +78,7 @@ Result iterative_result(const Scene& scene, const SolverOptions& options,
   r.criterion = record.termination.criterion;
   r.message = record.termination.message;
   r.iterations = record.iterations;
+  warn_where_the_seeds_test_fails(scene.overlap_tolerance(), r);
   return r;
 }
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 
 namespace fibrecheck {
 
@@ -38,6 +39,20 @@ DeformedTest deformed_test(const ContactDetector& detector, const std::vector<Co
       test.overlap_where_free = std::max(test.overlap_where_free, -gap);
   }
   return test;
+}
+
+void warn_where_the_seeds_test_fails(double overlap_tolerance, Result& r) {
+  if (r.geometry != "deformed" || r.status != Status::converged) return;
+  const DeformedTest& t = r.deformed_test;
+  if (!(t.gap_where_pushing > overlap_tolerance || t.overlap_where_free > overlap_tolerance))
+    return;
+  std::ostringstream out;
+  out.precision(3);
+  out << "the seed's test on the deformed fibres is not met: a contact pushes across a gap of "
+      << t.gap_where_pushing << " mm and one that does not push overlaps by "
+      << t.overlap_where_free << " mm, above t_d = " << overlap_tolerance
+      << " mm (a crossing may lie off the closest points of the deformed fibres)";
+  r.warnings.push_back(out.str());
 }
 
 }  // namespace fibrecheck

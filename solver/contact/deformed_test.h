@@ -26,4 +26,10 @@ DeformedTest deformed_test(const ContactDetector& detector, const std::vector<Co
                            const std::vector<Eigen::Vector3d>& u_b,
                            const FibreDisplacements& displacements);
 
+/// Under the deformed contact a converged answer passes the seed's test to t_d. Where the
+/// result's test is above `overlap_tolerance` (a crossing its solver left off the closest points
+/// of the deformed fibres), the converged result gets a warning saying by how much; the
+/// linearised contact is not judged by this test. Call it once the status is set.
+void warn_where_the_seeds_test_fails(double overlap_tolerance, Result& r);
+
 }  // namespace fibrecheck
