@@ -10,6 +10,7 @@
 #include "deformed_contact_ground_truths.h"
 #include "iterative_solver.h"
 #include "reference_solver.h"
+#include "result_difference.h"
 #include "scene.h"
 
 namespace fibrecheck {
@@ -137,14 +138,7 @@ TEST(ReferenceDeformedContact, CrossingsOfAWeaveActAtTheDeformedClosestPoints) {
       }
   }
   EXPECT_GE(crossings, 12);
-  double largest = 0.0, difference = 0.0;
-  for (std::size_t f = 0; f < fem.fibres.size(); ++f)
-    for (std::size_t j = 0; j < fem.fibres[f].displacement.size(); ++j) {
-      largest = std::max(largest, it.fibres[f].displacement[j].norm());
-      difference = std::max(difference,
-                            (fem.fibres[f].displacement[j] - it.fibres[f].displacement[j]).norm());
-    }
-  EXPECT_LE(difference, 1e-5 * largest);
+  EXPECT_LE(testing::displacement_difference(it, fem), 1e-5);
 }
 
 }  // namespace

@@ -13,6 +13,7 @@
 #include "input_error.h"
 #include "iterative_solver.h"
 #include "reference_solver.h"
+#include "result_difference.h"
 #include "scene.h"
 
 namespace fibrecheck {
@@ -32,15 +33,9 @@ TEST_P(ExtremeCatalogue, ReferenceGivesTheExpectedOutcome) {
   if (r.status != Status::converged) return;
   const Result it = solve_iteratively(scene, SolverOptions::from_scene(scene));
   if (it.status != Status::converged) return;
-  double largest = 0.0, difference = 0.0;
   ASSERT_EQ(r.fibres.size(), it.fibres.size());
-  for (std::size_t f = 0; f < r.fibres.size(); ++f)
-    for (std::size_t j = 0; j < r.fibres[f].displacement.size(); ++j) {
-      largest = std::max(largest, r.fibres[f].displacement[j].norm());
-      difference =
-          std::max(difference, (r.fibres[f].displacement[j] - it.fibres[f].displacement[j]).norm());
-    }
-  EXPECT_LE(difference, 1e-4 * largest) << "the solvers disagree on " << GetParam();
+  EXPECT_LE(testing::displacement_difference(r, it), 1e-4)
+      << "the solvers disagree on " << GetParam();
 }
 
 INSTANTIATE_TEST_SUITE_P(Scenes, ExtremeCatalogue,

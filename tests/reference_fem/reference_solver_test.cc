@@ -14,6 +14,7 @@
 
 #include "iterative_solver.h"
 #include "load_path.h"
+#include "result_difference.h"
 #include "test_scenes.h"
 #include "tow_generator.h"
 
@@ -136,7 +137,7 @@ struct Difference {
 
 Difference compare(const Result& x, const Result& y) {
   std::map<std::tuple<std::string, std::string, long long>, Eigen::Vector3d> forces;
-  double largest_force = 0.0, largest_displacement = 0.0;
+  double largest_force = 0.0;
   for (const Result* r : {&x, &y})
     for (const ContactResult& c : r->contacts)
       for (const ContactPoint& p : c.points) {
@@ -147,14 +148,8 @@ Difference compare(const Result& x, const Result& y) {
       }
   Difference d;
   for (const auto& [key, f] : forces) d.force = std::max(d.force, f.norm());
-  for (std::size_t f = 0; f < x.fibres.size(); ++f)
-    for (std::size_t j = 0; j < x.fibres[f].displacement.size(); ++j) {
-      largest_displacement = std::max(largest_displacement, x.fibres[f].displacement[j].norm());
-      d.displacement = std::max(d.displacement,
-                                (x.fibres[f].displacement[j] - y.fibres[f].displacement[j]).norm());
-    }
   d.force /= largest_force;
-  d.displacement /= largest_displacement;
+  d.displacement = testing::displacement_difference(x, y);
   return d;
 }
 
