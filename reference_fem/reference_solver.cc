@@ -134,7 +134,20 @@ void ReferenceSolver::detect() {
                                  moved_crossings_.empty() ? contacts_ : moved_crossings_, origin);
   moved_crossings_.clear();
   contacts_ = std::move(found);
+  if (detector_.geometry().deformed()) place_on_the_finite_elements();
   if (mu_ > 0.0) origins_.set(contacts_);
+}
+
+// The detection measures the candidates on its grid, whose linear interpolation of a fibre that
+// point forces bend errs by about h²κ/8: normals turned by up to 1e-3 rad on binder fibres pressing
+// a tow. Each candidate's normal and overlap are measured again at the finite-element fibres.
+void ReferenceSolver::place_on_the_finite_elements() {
+  std::vector<Eigen::Vector3d> u_a, u_b;
+  displacements_at_contacts(u_a, u_b);
+  for (std::size_t k = 0; k < contacts_.size(); ++k) {
+    detector_.geometry().follow(contacts_[k], u_a[k], u_b[k]);
+    contacts_[k].overlap = detector_.geometry().overlap(contacts_[k], u_a[k], u_b[k]);
+  }
 }
 
 // A load step of a path starts where the last one ended: a candidate the last step had takes its

@@ -76,6 +76,7 @@ class ReferenceSolver {
   // reference_output.cc, reference_result.cc).
   void deform_under_scene_loads();
   void detect();
+  void place_on_the_finite_elements();
   void take_last_step_forces();
   void make_grid();
   void setup_system();
