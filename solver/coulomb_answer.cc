@@ -70,6 +70,17 @@ States read_states(const std::vector<Contact>& contacts, const Residual& r, doub
   return s;
 }
 
+/// The tangential direction across a slipping crossing's friction direction e, n × e.
+Eigen::Vector3d across(const Contact& c, const Eigen::Vector3d& e) {
+  return c.normal.cross(e);
+}
+
+/// Whether contact k slips in a plane with a friction on its disk's edge, which turns as well as
+/// grows.
+bool slips_across(const Contact& c, const States& s, std::size_t k) {
+  return c.tangents == 2 && c.force > 0.0 && s.direction[k].squaredNorm() > 0.0;
+}
+
 /// The largest overlap at a pushing contact, overlap at a free one, slip at a sticking one, and
 /// slip off the friction's direction at a slipping one (mm).
 double left_of(const Residual& r, const States& s) {
@@ -175,6 +186,10 @@ void newton_step(const std::vector<Fibre>& fibres, const Superposition& beams,
     const Contact& c = contacts[k];
     free[3 * k] = s.pushes[k];
     if (s.pushes[k]) b[static_cast<Eigen::Index>(3 * k)] = r.overlap[static_cast<Eigen::Index>(k)];
+    if (slips_across(c, s, k)) {
+      free[3 * k + 1] = 1;
+      b[static_cast<Eigen::Index>(3 * k + 1)] = r.slip[k].dot(across(c, s.direction[k]));
+    }
     if (!s.sticks[k]) continue;
     free[3 * k + 1] = 1;
     b[static_cast<Eigen::Index>(3 * k + 1)] = r.slip[k].dot(c.tangent);
@@ -188,30 +203,46 @@ void newton_step(const std::vector<Fibre>& fibres, const Superposition& beams,
       if (!free[static_cast<std::size_t>(i)]) v[i] = 0.0;
   };
   // The slipping frictions' components for normal forces P + scale·δP: μ(P + δP)·e − F at
-  // scale 1, μ·δP·e at scale 0 with no P.
+  // scale 1, μ·δP·e at scale 0 with no P; a crossing's turns across e by its own unknown.
   auto slipping = [&](const Eigen::VectorXd& x, double P_share, double F_share) {
     Eigen::VectorXd out = x;
     for (std::size_t k = 0; k < n; ++k) {
       if (!(s.direction[k].squaredNorm() > 0.0)) continue;
       const Contact& c = contacts[k];
-      const double P = P_share * c.force + x[static_cast<Eigen::Index>(3 * k)];
-      const Eigen::Vector3d change = mu * P * s.direction[k] - F_share * c.friction;
-      out[static_cast<Eigen::Index>(3 * k + 1)] = change.dot(c.tangent);
-      out[static_cast<Eigen::Index>(3 * k + 2)] =
-          c.tangents == 2 ? change.dot(c.second_tangent()) : 0.0;
+      const Eigen::Index i = static_cast<Eigen::Index>(3 * k);
+      const double P = P_share * c.force + x[i];
+      Eigen::Vector3d change = mu * P * s.direction[k] - F_share * c.friction;
+      if (slips_across(c, s, k)) change += x[i + 1] * across(c, s.direction[k]);
+      out[i + 1] = change.dot(c.tangent);
+      out[i + 2] = c.tangents == 2 ? change.dot(c.second_tangent()) : 0.0;
     }
     return out;
+  };
+  // A slipping crossing's equation is its slip across its friction's direction; turning the
+  // friction by y/(μP) turns that direction too, by the slip along it.
+  auto slips_measured_across = [&](const Eigen::VectorXd& x, Eigen::VectorXd& w) {
+    for (std::size_t k = 0; k < n; ++k) {
+      if (!slips_across(contacts[k], s, k)) continue;
+      const Contact& c = contacts[k];
+      const Eigen::Index i = static_cast<Eigen::Index>(3 * k);
+      const Eigen::Vector3d slip = w[i + 1] * c.tangent + w[i + 2] * c.second_tangent();
+      w[i + 1] = slip.dot(across(c, s.direction[k])) +
+                 r.slip[k].dot(s.direction[k]) / (mu * c.force) * x[i + 1];
+      w[i + 2] = 0.0;
+    }
   };
   const ComplianceOperator W(beams, contacts, false, true);
   FibreStiffness stiffness(fibres);
   stiffness.attach(turned);
   Eigen::VectorXd q;
   W.apply(slipping(Eigen::VectorXd::Zero(m), 1.0, 1.0), q);
+  slips_measured_across(Eigen::VectorXd::Zero(m), q);
   restrict(q);
   b -= q;
   const Eigen::VectorXd x = gmres(
       [&](const Eigen::VectorXd& v, Eigen::VectorXd& out) {
         W.apply(slipping(v, 0.0, 0.0), out);
+        slips_measured_across(v, out);
         restrict(out);
       },
       [&](const Eigen::VectorXd& v, Eigen::VectorXd& out) { stiffness.apply(v, free, out); }, b);

@@ -23,10 +23,12 @@ struct CoulombAnswer {
 /// frictionless residual equation holds the frictions fixed. Each contact that pushes has one
 /// equation for its overlap; one that sticks (|F| < μP) one more per tangent for its slip, its
 /// friction free; one that slips keeps its friction on the edge of the disk, μP along its
-/// direction. The normal forces and the sticking frictions then solve one linear system with the
-/// frictional Delassus operator (overlaps and slips that forces and frictions remove), the
-/// slipping frictions following the normal forces: a Newton step of the frictional problem with
-/// the contacts' states held. The slipping frictions make it unsymmetric: it is solved by GMRES,
+/// direction, and a crossing that slips one more for its slip across that direction, which turns
+/// with its friction (by the slip along it times the turn). The normal forces, the sticking
+/// frictions and the slipping crossings' turns then solve one linear system with the frictional
+/// Delassus operator (overlaps and slips that forces and frictions remove), the slipping
+/// frictions following the normal forces: a Newton step of the frictional problem with the
+/// contacts' states held. The slipping frictions make it unsymmetric: it is solved by GMRES,
 /// preconditioned with each fibre's stiffness at its stations (a friction along t acts as a
 /// normal force along ∓t). The step is put back on the cone, the states are read again, and the
 /// Newton steps repeat until what is left falls below `share` of what the state left, a few times

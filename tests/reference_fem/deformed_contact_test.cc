@@ -7,12 +7,12 @@
 #include <cmath>
 #include <string>
 
-#include "binder_scene.h"
 #include "deformed_contact_ground_truths.h"
 #include "iterative_solver.h"
 #include "reference_solver.h"
 #include "result_difference.h"
 #include "scene.h"
+#include "textile_scenes.h"
 
 namespace fibrecheck {
 namespace {
@@ -86,42 +86,13 @@ TEST(ReferenceDeformedContact, CommittedTowsPassTheSeedsTestInBothSolvers) {
   }
 }
 
-// A plain weave: four fibres along x under a uniform load, pressed onto four along y held up by
-// point loads, every crossing overlapping by 2e-4 mm before the loads act and the fibres slightly
-// skewed, so that the closest points of the bent fibres slide from where the chords cross.
-Scene plain_weave() {
-  Scene s;
-  s.name = "plain_weave";
-  const double pitch = 0.12, length = 5 * pitch, r = 0.01;
-  const double shift[4] = {0.004, -0.007, 0.002, -0.003}, skew[4] = {0.006, -0.004, 0.008, -0.006};
-  const double offset[4] = {-0.005, 0.006, -0.002, 0.008};
-  for (int i = 0; i < 4; ++i) {
-    const double y = pitch * (i + 1) + shift[i];
-    s.fibres.push_back(
-        {"X" + std::to_string(i), {0, y, 0.0099}, {length, y + skew[i], 0.0099}, r, 80000});
-    s.loads.push_back({"X" + std::to_string(i), LoadKind::distributed, 0.5, {0, 0, -2e-4}});
-  }
-  for (int j = 0; j < 4; ++j) {
-    const double x = pitch * (j + 1) + offset[j];
-    s.fibres.push_back({"Y" + std::to_string(j),
-                        {x, 0, -0.0099},
-                        {x - skew[j], length, -0.0099},
-                        r,
-                        80000 * (1 + 0.5 * j)});
-    s.loads.push_back({"Y" + std::to_string(j), LoadKind::point, 0.35 + 0.1 * j, {0, 0, 6e-5}});
-  }
-  s.contact.slices = 20;
-  s.output.samples = 51;
-  return s;
-}
-
 // A crossing's place sets its normal to first order and its gap only to second. The reference at
 // the scene's own t_d, against the iterative solver converged far below it: every pushing crossing
 // at the same closest points of the deformed fibres to 1e-7 of the length (measured 3e-8; moved
 // only while the centres came closer by a tenth of t_d, up to 2.6e-6 off), the seed's test met
 // there, and the deflections, lateral ones included, within 1e-5 of the largest (measured 1.3e-6).
 TEST(ReferenceDeformedContact, CrossingsOfAWeaveActAtTheDeformedClosestPoints) {
-  const Scene s = plain_weave();
+  const Scene s = testing::plain_weave();
   Scene tight = s;
   tight.solver.overlap_tolerance = 1e-11;
   const Result it = solve_iteratively(tight, SolverOptions::from_scene(tight));

@@ -11,7 +11,7 @@
 #include <iterator>
 #include <nlohmann/json.hpp>
 
-#include "binder_scene.h"
+#include "textile_scenes.h"
 #include "contact_problem.h"
 #include "contact_problem_check.h"
 #include "friction_ground_truths.h"
