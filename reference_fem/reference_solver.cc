@@ -139,8 +139,9 @@ void ReferenceSolver::detect() {
 }
 
 // The detection measures the candidates on its grid, whose linear interpolation of a fibre that
-// point forces bend errs by about h²κ/8: normals turned by up to 1e-3 rad on binder fibres pressing
-// a tow. Each candidate's normal and overlap are measured again at the finite-element fibres.
+// point forces bend errs by about h²κ/8, and a normal taken from it is off by that over the
+// distance of the centres. Each candidate's normal and overlap are measured again at the
+// finite-element fibres, so that every solve starts from the normals of its own configuration.
 void ReferenceSolver::place_on_the_finite_elements() {
   std::vector<Eigen::Vector3d> u_a, u_b;
   displacements_at_contacts(u_a, u_b);
