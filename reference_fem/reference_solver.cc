@@ -126,25 +126,31 @@ void ReferenceSolver::deform_under_scene_loads() {
 }
 
 // Candidates on the finite-element fibres as last deformed (the shared detection); a contact found
-// again keeps its force, and a pushing contact stays a candidate.
-void ReferenceSolver::detect() {
+// again keeps its force, and a pushing contact stays a candidate. `u_a` and `u_b` get the
+// displacements of the finite-element fibres where each candidate acts.
+void ReferenceSolver::detect(std::vector<Eigen::Vector3d>& u_a, std::vector<Eigen::Vector3d>& u_b) {
   std::vector<Contact> found = detector_.detect(grid_u_);
   const std::vector<long> origin = carry_over(contacts_, found);
   detector_.keep_crossing_places(grid_u_, found,
                                  moved_crossings_.empty() ? contacts_ : moved_crossings_, origin);
   moved_crossings_.clear();
   contacts_ = std::move(found);
-  if (detector_.geometry().deformed()) place_on_the_finite_elements();
+  displacements_at_contacts(u_a, u_b);
+  if (detector_.geometry().deformed()) place_on_the_finite_elements(u_a, u_b);
   if (mu_ > 0.0) origins_.set(contacts_);
+}
+
+void ReferenceSolver::detect() {
+  std::vector<Eigen::Vector3d> u_a, u_b;
+  detect(u_a, u_b);
 }
 
 // The detection measures the candidates on its grid, whose linear interpolation of a fibre that
 // point forces bend errs by about h²κ/8, and a normal taken from it is off by that over the
 // distance of the centres. Each candidate's normal and overlap are measured again at the
 // finite-element fibres, so that every solve starts from the normals of its own configuration.
-void ReferenceSolver::place_on_the_finite_elements() {
-  std::vector<Eigen::Vector3d> u_a, u_b;
-  displacements_at_contacts(u_a, u_b);
+void ReferenceSolver::place_on_the_finite_elements(const std::vector<Eigen::Vector3d>& u_a,
+                                                   const std::vector<Eigen::Vector3d>& u_b) {
   for (std::size_t k = 0; k < contacts_.size(); ++k) {
     detector_.geometry().follow(contacts_[k], u_a[k], u_b[k]);
     contacts_[k].overlap = detector_.geometry().overlap(contacts_[k], u_a[k], u_b[k]);
@@ -381,9 +387,8 @@ bool ReferenceSolver::update_active_set() {
     was_pushing[contacts_[k].key()] = k < pushing_.size() ? pushing_[k] : 0;
   std::vector<Contact> solved = contacts_;
   deform();
-  detect();
   std::vector<Eigen::Vector3d> ua, ub;
-  displacements_at_contacts(ua, ub);
+  detect(ua, ub);
   bool unchanged = !remesh_;
   remesh_ = false;
   pushing_.assign(contacts_.size(), 0);

@@ -76,7 +76,9 @@ class ReferenceSolver {
   // reference_output.cc, reference_result.cc).
   void deform_under_scene_loads();
   void detect();
-  void place_on_the_finite_elements();
+  void detect(std::vector<Eigen::Vector3d>& u_a, std::vector<Eigen::Vector3d>& u_b);
+  void place_on_the_finite_elements(const std::vector<Eigen::Vector3d>& u_a,
+                                    const std::vector<Eigen::Vector3d>& u_b);
   void take_last_step_forces();
   void make_grid();
   void setup_system();
