@@ -6,6 +6,7 @@
 
 #include "compliance_operator.h"
 #include "fibre_stiffness.h"
+#include "gmres.h"
 
 namespace fibrecheck {
 
@@ -13,9 +14,9 @@ namespace {
 
 constexpr int kNewtonSteps = 8;
 constexpr int kHalvings = 10;
-constexpr int kRestart = 30;
-constexpr int kMaxProducts = 500;
-constexpr double kReduction = 1e-10;
+/// The Newton steps' linear systems: GMRES restarted every 30 products, at most 500 of them, to
+/// 1e-10 of the right-hand side.
+constexpr GmresLimits kLinearSolve{30, 500, 1e-10};
 /// A friction this close to μP lies on the edge of its disk: it slips. The normals turning after
 /// a state was put on the cone move the frictions off its edge by about 1e-9 of their size.
 constexpr double kOnTheEdge = 1e-6;
@@ -115,63 +116,6 @@ std::vector<Contact> turned_into_normals(const std::vector<Contact>& contacts) {
   return turned;
 }
 
-/// x with A·x = b by restarted GMRES, right-preconditioned by `precondition` (Saad, Iterative
-/// Methods for Sparse Linear Systems, §9.3.2), to a residual of kReduction·‖b‖.
-template <class Apply, class Precondition>
-Eigen::VectorXd gmres(const Apply& apply, const Precondition& precondition,
-                      const Eigen::VectorXd& b) {
-  const Eigen::Index n = b.size();
-  Eigen::VectorXd x = Eigen::VectorXd::Zero(n), r = b, z(n), w(n);
-  const double stop = kReduction * b.norm();
-  int products = 0;
-  while (products < kMaxProducts && r.norm() > stop) {
-    const double beta = r.norm();
-    std::vector<Eigen::VectorXd> V{r / beta};
-    Eigen::MatrixXd H = Eigen::MatrixXd::Zero(kRestart + 1, kRestart);
-    Eigen::VectorXd g = Eigen::VectorXd::Zero(kRestart + 1), cs(kRestart), sn(kRestart);
-    g[0] = beta;
-    int j = 0;
-    for (; j < kRestart && products < kMaxProducts; ++j) {
-      precondition(V[j], z);
-      apply(z, w);
-      ++products;
-      for (int i = 0; i <= j; ++i) {
-        H(i, j) = w.dot(V[i]);
-        w -= H(i, j) * V[i];
-      }
-      H(j + 1, j) = w.norm();
-      for (int i = 0; i < j; ++i) {
-        const double h = cs[i] * H(i, j) + sn[i] * H(i + 1, j);
-        H(i + 1, j) = -sn[i] * H(i, j) + cs[i] * H(i + 1, j);
-        H(i, j) = h;
-      }
-      const double rho = std::hypot(H(j, j), H(j + 1, j));
-      if (!(rho > 0.0)) break;
-      cs[j] = H(j, j) / rho;
-      sn[j] = H(j + 1, j) / rho;
-      H(j, j) = rho;
-      H(j + 1, j) = 0.0;
-      g[j + 1] = -sn[j] * g[j];
-      g[j] *= cs[j];
-      const bool done = std::fabs(g[j + 1]) <= stop || !(w.norm() > 0.0);
-      if (!done) V.push_back(w / w.norm());
-      if (done) {
-        ++j;
-        break;
-      }
-    }
-    const Eigen::VectorXd y = H.topLeftCorner(j, j).triangularView<Eigen::Upper>().solve(g.head(j));
-    w.setZero();
-    for (int i = 0; i < j; ++i) w += y[i] * V[static_cast<std::size_t>(i)];
-    precondition(w, z);
-    x += z;
-    apply(x, w);
-    ++products;
-    r = b - w;
-  }
-  return x;
-}
-
 /// One Newton step with the contacts' states held: the normal forces of the pushing contacts and
 /// the frictions of the sticking ones solve the overlaps and slips left, the slipping frictions
 /// follow their normal forces along their directions.
@@ -245,7 +189,8 @@ void newton_step(const std::vector<Fibre>& fibres, const Superposition& beams,
         slips_measured_across(v, out);
         restrict(out);
       },
-      [&](const Eigen::VectorXd& v, Eigen::VectorXd& out) { stiffness.apply(v, free, out); }, b);
+      [&](const Eigen::VectorXd& v, Eigen::VectorXd& out) { stiffness.apply(v, free, out); }, b,
+      kLinearSolve);
   const Eigen::VectorXd change = slipping(x, 1.0, 1.0);
   for (std::size_t k = 0; k < n; ++k) {
     Contact& c = contacts[k];
