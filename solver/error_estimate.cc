@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <optional>
 #include <tuple>
@@ -15,6 +16,7 @@
 #include "frictionless_problem.h"
 #include "projected_cg.h"
 #include "superposition.h"
+#include "turning_normals.h"
 
 namespace fibrecheck {
 
@@ -45,6 +47,12 @@ constexpr double kUnturned = 1e-10;
 /// its last change.
 constexpr double kLargestContraction = 0.95;
 constexpr double kCgReduction = 1e-8;
+/// Changes of the pushing set the deformed contact's Newton steps make before they fall back to
+/// the projected solve.
+constexpr int kSetRounds = 10;
+/// A round that changes more of the pushing set than this, or than a hundredth of it, started from
+/// too rough a state for Newton's steps (the projected solve takes over).
+constexpr int kFewChanges = 10;
 
 /// x with W_AA·x = r on the contacts of `active` (their own list), by conjugate gradients
 /// preconditioned with the fibres' stiffness at their stations.
@@ -170,34 +178,117 @@ double tail_of_turns(bool still_turning, double contraction) {
   return rho / (1.0 - rho);
 }
 
+/// Each slice's misalignment under normal forces `P`: how far its displaced centres lie apart
+/// across its normal, t·(B′c − A′c) (mm); zero for other contacts.
+Eigen::VectorXd misalignments(const Superposition& beams, const ContactGeometry& geometry,
+                              const std::vector<Contact>& contacts, const Eigen::VectorXd& P) {
+  std::vector<Eigen::Vector3d> u_a, u_b;
+  beams.contact_displacements(contacts, forces_on_a(contacts, P), true, u_a, u_b);
+  Eigen::VectorXd e = Eigen::VectorXd::Zero(P.size());
+  for (std::size_t k = 0; k < contacts.size(); ++k) {
+    const Contact& c = contacts[k];
+    if (c.kind != ContactKind::line || c.tangents != 1) continue;
+    const double radii = geometry.fibres()[c.a].radius + geometry.fibres()[c.b].radius;
+    const double distance = radii + geometry.deformed_gap(c, u_a[k], u_b[k]);
+    e[static_cast<Eigen::Index>(k)] =
+        distance * c.tangent.dot(geometry.deformed_normal(c, u_a[k], u_b[k]));
+  }
+  return e;
+}
+
+/// The answer of the deformed contact's Newton steps on a pushing set (turning_normals_answer),
+/// from forces `P` with overlaps `d`: the set starts as the contacts that push or overlap, and
+/// contacts whose force the answer takes below zero leave it, others the answer makes overlap join
+/// it, until it holds (at most kSetRounds times, and only while each round changes few contacts and
+/// fewer than the last: from a rough state the full Newton steps swing the set further each round).
+/// The members' normals in `contacts` are the answer's. Empty where the set did not settle (the
+/// contacts then as they were).
+std::optional<Eigen::VectorXd> turning_answer(const Scene& scene, const std::vector<Fibre>& fibres,
+                                              const Superposition& all,
+                                              const ContactGeometry& geometry,
+                                              std::vector<Contact>& contacts,
+                                              const Eigen::VectorXd& P, const Eigen::VectorXd& d,
+                                              double slack) {
+  const Eigen::Index n = P.size();
+  std::vector<unsigned char> member(contacts.size());
+  for (Eigen::Index k = 0; k < n; ++k) member[k] = P[k] > 0.0 || d[k] > 0.0;
+  const Eigen::VectorXd e = misalignments(all, geometry, contacts, P);
+  int last_changes = std::numeric_limits<int>::max();
+  for (int round = 0; round < kSetRounds; ++round) {
+    std::vector<Eigen::Index> where;
+    std::vector<Contact> taking_part;
+    std::vector<unsigned char> pushes;
+    for (Eigen::Index k = 0; k < n; ++k) {
+      if (!member[k] && !(P[k] > 0.0)) continue;
+      where.push_back(k);
+      taking_part.push_back(contacts[static_cast<std::size_t>(k)]);
+      pushes.push_back(member[k]);
+    }
+    const Eigen::Index m = static_cast<Eigen::Index>(where.size());
+    Eigen::VectorXd from(m), left(m), across(m);
+    for (Eigen::Index i = 0; i < m; ++i)
+      from[i] = P[where[i]], left[i] = d[where[i]], across[i] = e[where[i]];
+    const std::vector<Contact> held = taking_part;
+    const Eigen::VectorXd x =
+        turning_normals_answer(scene, fibres, geometry, taking_part, pushes, from, left, across);
+    Eigen::VectorXd exact = P;
+    for (Eigen::Index i = 0; i < m; ++i) {
+      exact[where[i]] += x[i];
+      contacts[static_cast<std::size_t>(where[i])] = taking_part[static_cast<std::size_t>(i)];
+    }
+    const Eigen::VectorXd gap = contact_overlaps(all, geometry, contacts, exact);
+    const double force_slack = kSwitchingShare * exact.cwiseAbs().maxCoeff();
+    int changes = 0;
+    for (Eigen::Index k = 0; k < n; ++k) {
+      const bool leaves = member[k] && exact[k] < -force_slack;
+      const bool joins = !member[k] && gap[k] > slack;
+      if (leaves || joins) member[k] = !member[k], ++changes;
+    }
+    if (changes == 0) return exact.cwiseMax(0.0);
+    for (Eigen::Index i = 0; i < m; ++i)
+      contacts[static_cast<std::size_t>(where[i])] = held[static_cast<std::size_t>(i)];
+    const int members = static_cast<int>(std::count(member.begin(), member.end(), 1));
+    if (changes >= last_changes || changes > std::max(kFewChanges, members / 100)) break;
+    last_changes = changes;
+  }
+  return std::nullopt;
+}
+
 /// The answer of the problem linearised about the contacts' normals, from forces `P` with overlaps
-/// `d`: the residual equation on the pushing set, or where that set switches, the contact problem
-/// solved from `P`. Counts its passes into `estimate` and says whether it settled.
+/// `d`: the residual equation on the pushing set (on the deformed fibres with the slices' normals
+/// turning, turning_answer), or where that set switches, the contact problem solved from `P`.
+/// Counts its passes into `estimate` and says whether it settled.
 Eigen::VectorXd linearised_answer(const Scene& scene, const std::vector<Fibre>& fibres,
                                   const Superposition& all, const ContactGeometry& geometry,
-                                  const std::vector<Contact>& contacts, const Eigen::VectorXd& P,
+                                  std::vector<Contact>& contacts, const Eigen::VectorXd& P,
                                   const Eigen::VectorXd& d, ErrorEstimate& estimate) {
   const Eigen::Index n = P.size();
-  std::vector<unsigned char> pushes(contacts.size());
-  std::vector<Contact> active;
-  std::vector<Eigen::Index> where;
-  for (Eigen::Index k = 0; k < n; ++k) {
-    pushes[k] = P[k] > 0.0 || d[k] > 0.0;
-    if (pushes[k]) active.push_back(contacts[static_cast<std::size_t>(k)]), where.push_back(k);
+  const double residual = std::max(contact_residual(P, -d), 1e-300);
+  ++estimate.passes;
+  if (geometry.deformed()) {
+    if (auto exact =
+            turning_answer(scene, fibres, all, geometry, contacts, P, d, kProblemShare * residual))
+      return *exact;
+  } else {
+    std::vector<unsigned char> pushes(contacts.size());
+    std::vector<Contact> active;
+    std::vector<Eigen::Index> where;
+    for (Eigen::Index k = 0; k < n; ++k) {
+      pushes[k] = P[k] > 0.0 || d[k] > 0.0;
+      if (pushes[k]) active.push_back(contacts[static_cast<std::size_t>(k)]), where.push_back(k);
+    }
+    Eigen::VectorXd exact = P;
+    if (!where.empty()) {
+      Eigen::VectorXd r(static_cast<Eigen::Index>(where.size()));
+      for (std::size_t i = 0; i < where.size(); ++i) r[static_cast<Eigen::Index>(i)] = d[where[i]];
+      const Eigen::VectorXd x = solve_on(scene, fibres, std::move(active), r);
+      for (std::size_t i = 0; i < where.size(); ++i)
+        exact[where[i]] += x[static_cast<Eigen::Index>(i)];
+    }
+    const Eigen::VectorXd gap = contact_overlaps(all, geometry, contacts, exact);
+    if (switching_settled(exact, gap, pushes, kProblemShare * residual)) return exact.cwiseMax(0.0);
   }
   Eigen::VectorXd exact = P;
-  if (!where.empty()) {
-    Eigen::VectorXd r(static_cast<Eigen::Index>(where.size()));
-    for (std::size_t i = 0; i < where.size(); ++i) r[static_cast<Eigen::Index>(i)] = d[where[i]];
-    const Eigen::VectorXd x = solve_on(scene, fibres, std::move(active), r);
-    for (std::size_t i = 0; i < where.size(); ++i)
-      exact[where[i]] += x[static_cast<Eigen::Index>(i)];
-  }
-  ++estimate.passes;
-  const double residual = std::max(contact_residual(P, -d), 1e-300);
-  const Eigen::VectorXd gap = contact_overlaps(all, geometry, contacts, exact);
-  if (switching_settled(exact, gap, pushes, kProblemShare * residual)) return exact.cwiseMax(0.0);
-  exact = P;
   ++estimate.passes;
   estimate.settled =
       solve_frictionless_problem(scene, fibres, all, geometry, contacts, kNearTouching * residual,

@@ -191,6 +191,8 @@ class IterativeSolver {
   static constexpr int kMaxCorrections = 3;
   int corrections_ = 0;  ///< states that took the estimate's answer for force_tolerance
   static constexpr int kMaxExactAnswers = 2;
+  /// The second answer is asked for only from a residual this share of the first's.
+  static constexpr double kExactAnswerProgress = 0.1;
   int normal_answers_ = 0;                 ///< estimates asked to settle the normals
   double last_exact_residual_ = INFINITY;  ///< the residual of the update that last asked
   long exact_answers_ = 0;                 ///< states that took the estimate's answer, for either
@@ -455,18 +457,19 @@ std::optional<Termination> IterativeSolver::forces_accurate_enough() {
 // constant factor per update (fibres that lean on each other roll, and on a compacted tow the
 // factor is close to one), each update costing a decade or more of the accelerated iteration.
 // Near the end the pushing set is the answer's, and the error estimate's answer — the linearised
-// problem solved exactly on its pushing set, the crossings and normals following its own displaced
-// fibres until neither moves — lands within t_d in an answer or two. It is taken where an update
-// left a residual above t_d but below `exact_answer_below` times it, at most twice a run and only
-// from a smaller residual than the last: where the pushing set still switches the estimate falls
-// back to a projected solve of every candidate, which on compacted tows is costly and takes the
-// residual down little.
+// problem solved exactly on its pushing set by Newton's steps with the slices' normals turning, the
+// crossings following its own displaced fibres — lands within t_d in an answer or two. It is taken
+// where an update left a residual above t_d but below `exact_answer_below` times it, at most twice
+// a run and the second from a tenth of the residual the first was asked from: where the pushing
+// set still switches the estimate falls back to a projected solve of every candidate, which on
+// compacted tows is costly and takes the residual down little, and from a tenth as far Newton's
+// steps keep their pushing set.
 // Frictionless only: with friction the estimate's Newton steps settle only from within about
 // 1e-6 mm. True when the state took the answer.
 bool IterativeSolver::settle_normals_exactly(double residual) {
   if (mu_ > 0.0 || normal_answers_ >= kMaxExactAnswers ||
       !(residual < options_.exact_answer_below * overlap_tolerance_) ||
-      !(residual < last_exact_residual_))
+      !(residual < kExactAnswerProgress * last_exact_residual_))
     return false;
   ++normal_answers_;
   last_exact_residual_ = residual;
