@@ -44,6 +44,17 @@ std::vector<Scene> estimate_scenes() {
   return scenes;
 }
 
+/// A 100-fibre tow compacted to F = 0.8 in one step, 50 slices, on the deformed fibres.
+Scene compacted_tow() {
+  TowOptions tow;
+  tow.fibres = 100;
+  tow.slices = 50;
+  tow.seed = 7;
+  tow.volume_fraction = 0.35;
+  tow.compaction = 0.8;
+  return generate_tow(tow);
+}
+
 std::vector<Scene> both_geometries(const std::vector<Scene>& scenes) {
   std::vector<Scene> out;
   for (const Scene& s : scenes) {
@@ -121,13 +132,7 @@ TEST(ErrorEstimate, DefaultSettingsDeliverTheForceAccuracy) {
 // and now with the turns unknowns of the passes' Newton steps, the estimate of the state the
 // iteration stops in at the scene's t_d lies within [0.75, 2] times the true error.
 TEST(ErrorEstimate, TurnsStillUnderWayAreCountedOnACompactedTow) {
-  TowOptions tow;
-  tow.fibres = 100;
-  tow.slices = 50;
-  tow.seed = 7;
-  tow.volume_fraction = 0.35;
-  tow.compaction = 0.8;
-  Scene scene = generate_tow(tow);
+  Scene scene = compacted_tow();
   ASSERT_EQ(scene.contact.geometry, ContactGeometryModel::deformed);
   const Result exact = solve_reference(scene);
   ASSERT_EQ(exact.status, Status::converged) << exact.message;
@@ -154,13 +159,7 @@ TEST(ErrorEstimate, TurnsStillUnderWayAreCountedOnACompactedTow) {
 // run is within 1e-5 of it. Turning the normals only between exact linearised solves, the run
 // ended with gaps of up to t_d where it pushed, 3.0e-5 away in force.
 TEST(ErrorEstimate, TurningNormalsLandTheRunOnADeformedAnswer) {
-  TowOptions tow;
-  tow.fibres = 100;
-  tow.slices = 50;
-  tow.seed = 7;
-  tow.volume_fraction = 0.35;
-  tow.compaction = 0.8;
-  const Scene scene = generate_tow(tow);
+  const Scene scene = compacted_tow();
   ASSERT_EQ(scene.contact.geometry, ContactGeometryModel::deformed);
   const Result exact = solve_reference(scene);
   ASSERT_EQ(exact.status, Status::converged) << exact.message;
